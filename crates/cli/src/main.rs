@@ -1,0 +1,5 @@
+//! `lambert`: the command-line front end.
+
+fn main() {
+    println!("lambert");
+}

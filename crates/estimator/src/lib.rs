@@ -1,0 +1,5 @@
+//! # lambert-estimator
+//!
+//! Monte Carlo estimation of irradiance E = ∫ L cos θ dω, and the tools that
+//! check estimators and samplers: the chi-square goodness-of-fit test for
+//! direction samplers.

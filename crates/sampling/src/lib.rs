@@ -1,0 +1,54 @@
+//! # lambert-sampling
+//!
+//! Warps from the unit square to directions and points, each with its exact
+//! density and its inverse, in f64 and in f32 from one implementation, and
+//! the sample sequences that feed them.
+//!
+//! Every warp is a triple named alike: a sampler (`sample_*`, or `sample` on
+//! the warp's struct when it has parameters to validate and precompute), its
+//! density (`pdf_*` / `pdf`, 0 outside the support, never negative or NaN)
+//! and its inverse (`invert_*` / `invert`). Each states the measure of its
+//! density (per steradian or per square metre), its formula and its source.
+//!
+//! The f64 warps are in [`f64`] (also re-exported at the crate root); the
+//! f32 ones, for path tracers, in [`f32`]. Conventions (DESIGN.md): the local
+//! frame has +z as the normal, θ measured from +z, φ from +x; `u ∈ [0, 1)²`,
+//! and `u` exactly 0 or 1 still gives a finite unit vector of positive pdf.
+//!
+//! ```
+//! use lambert_sampling::f64::{pdf_cosine_hemisphere, sample_cosine_hemisphere};
+//! use glam::DVec2;
+//! let w = sample_cosine_hemisphere(DVec2::new(0.3, 0.8));
+//! assert!((w.length() - 1.0).abs() < 1e-15);
+//! assert!((pdf_cosine_hemisphere(w) - w.z / std::f64::consts::PI).abs() < 1e-15);
+//! ```
+
+pub(crate) mod precision;
+
+pub mod cone;
+pub mod error;
+pub mod frame;
+pub mod spherical;
+pub mod trig;
+
+pub use error::SamplingError;
+
+/// Every f64 warp and helper (`DVec2`, `DVec3`).
+pub mod f64 {
+    pub use crate::cone::f64::*;
+    pub use crate::error::SamplingError;
+    pub use crate::frame::f64::*;
+    pub use crate::spherical::f64::*;
+    pub use crate::trig::f64::*;
+}
+
+/// Every f32 warp and helper (`Vec2`, `Vec3`), for path tracers.
+pub mod f32 {
+    pub use crate::cone::f32::*;
+    pub use crate::error::SamplingError;
+    pub use crate::frame::f32::*;
+    pub use crate::spherical::f32::*;
+    pub use crate::trig::f32::*;
+}
+
+pub use crate::f64::*;

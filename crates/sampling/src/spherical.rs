@@ -1,0 +1,45 @@
+//! Spherical coordinates in the local frame (+z the axis, θ from +z, φ from
+//! +x), computed without cancellation where it matters.
+
+macro_rules! spherical_impl {
+    () => {
+        /// 1 − cos θ of the unit vector `w` about +z, without cancellation.
+        ///
+        /// For w_z > 0 it uses 1 − w_z = (w_x² + w_y²)/(1 + w_z), exact
+        /// algebra for a unit vector, so directions a few 1e-8 rad from the
+        /// axis keep full relative precision even in f32; for w_z ≤ 0 the
+        /// direct difference has no cancellation.
+        #[inline]
+        pub fn one_minus_cos_theta(w: V3) -> Real {
+            if w.z > 0.0 {
+                (w.x * w.x + w.y * w.y) / (1.0 + w.z)
+            } else {
+                1.0 - w.z
+            }
+        }
+
+        /// φ/(2π) ∈ [0, 1) of `w` (the azimuth as a fraction of a turn);
+        /// 0 on the axis.
+        #[inline]
+        pub fn azimuth_fraction(w: V3) -> Real {
+            let f = w.y.atan2(w.x) / (2.0 * PI);
+            let f = if f < 0.0 { f + 1.0 } else { f };
+            // f + 1 can round up to exactly 1 for tiny negative f.
+            if f >= 1.0 {
+                0.0
+            } else {
+                f
+            }
+        }
+
+        /// The unit vector with sin θ, cos θ and azimuth fraction `phi_u`
+        /// (φ = 2π·phi_u) in the local frame.
+        #[inline(always)]
+        pub fn direction_from(sin_theta: Real, cos_theta: Real, phi_u: Real) -> V3 {
+            let (s, c) = sin_cos_2pi(phi_u);
+            V3::new(sin_theta * c, sin_theta * s, cos_theta)
+        }
+    };
+}
+
+crate::precision::both_precisions!(spherical_impl);

@@ -1,0 +1,4 @@
+//! # lambert-tracer
+//!
+//! Ray casting and Whitted-style ray tracing of small scenes (planned; see
+//! the project's issues).

@@ -1,0 +1,1 @@
+//! Cross-crate validation suites for lambert; the suites live in `tests/`.
