@@ -25,29 +25,50 @@
 
 pub(crate) mod precision;
 
+pub mod area;
 pub mod cone;
+pub mod disk;
 pub mod error;
 pub mod frame;
+pub mod hemisphere;
+pub mod light_sample;
+pub mod sphere;
+pub mod sphere_light;
 pub mod spherical;
+pub mod triangle;
 pub mod trig;
 
 pub use error::SamplingError;
 
 /// Every f64 warp and helper (`DVec2`, `DVec3`).
 pub mod f64 {
+    pub use crate::area::f64::*;
     pub use crate::cone::f64::*;
+    pub use crate::disk::f64::*;
     pub use crate::error::SamplingError;
     pub use crate::frame::f64::*;
+    pub use crate::hemisphere::f64::*;
+    pub use crate::light_sample::f64::*;
+    pub use crate::sphere::f64::*;
+    pub use crate::sphere_light::f64::*;
     pub use crate::spherical::f64::*;
+    pub use crate::triangle::f64::*;
     pub use crate::trig::f64::*;
 }
 
 /// Every f32 warp and helper (`Vec2`, `Vec3`), for path tracers.
 pub mod f32 {
+    pub use crate::area::f32::*;
     pub use crate::cone::f32::*;
+    pub use crate::disk::f32::*;
     pub use crate::error::SamplingError;
     pub use crate::frame::f32::*;
+    pub use crate::hemisphere::f32::*;
+    pub use crate::light_sample::f32::*;
+    pub use crate::sphere::f32::*;
+    pub use crate::sphere_light::f32::*;
     pub use crate::spherical::f32::*;
+    pub use crate::triangle::f32::*;
     pub use crate::trig::f32::*;
 }
 

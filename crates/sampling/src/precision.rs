@@ -20,6 +20,12 @@ pub(crate) mod f64 {
     pub const PI: Real = core::f64::consts::PI;
     /// The largest value below 1.
     pub const ONE_MINUS_EPSILON: Real = 1.0 - f64::EPSILON / 2.0;
+    /// The components of `v` widened to f64 (for validation messages).
+    #[inline]
+    #[allow(clippy::unnecessary_cast)]
+    pub fn widen(v: V3) -> [f64; 3] {
+        [v.x as f64, v.y as f64, v.z as f64]
+    }
     /// Taylor coefficients of sin x / x in x², to x¹⁶ (see `trig`).
     pub const SIN_TAYLOR: [Real; 9] = [
         1.0,
@@ -58,6 +64,12 @@ pub(crate) mod f32 {
     pub const PI: Real = core::f32::consts::PI;
     /// The largest value below 1.
     pub const ONE_MINUS_EPSILON: Real = 1.0 - f32::EPSILON / 2.0;
+    /// The components of `v` widened to f64 (for validation messages).
+    #[inline]
+    #[allow(clippy::unnecessary_cast)]
+    pub fn widen(v: V3) -> [f64; 3] {
+        [v.x as f64, v.y as f64, v.z as f64]
+    }
     /// Taylor coefficients of sin x / x in x², to x⁸ (see `trig`).
     pub const SIN_TAYLOR: [Real; 5] = [1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0];
     /// Taylor coefficients of cos x in x², to x¹⁰ (see `trig`).
@@ -76,6 +88,7 @@ pub(crate) mod f32 {
 macro_rules! both_precisions {
     ($body:ident) => {
         /// The f64 (`DVec2`, `DVec3`) instantiation.
+        #[allow(clippy::unnecessary_cast)] // `x as f64` is a no-op only in this instantiation
         pub mod f64 {
             #[allow(unused_imports)]
             use crate::f64::*;

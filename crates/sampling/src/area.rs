@@ -1,0 +1,165 @@
+//! Uniform area sampling of a disk and of a parallelogram in 3-D, the
+//! building blocks of area-sampled lights. Convert their densities to solid
+//! angle with [`pdf_area_to_solid_angle`](crate::f64::pdf_area_to_solid_angle).
+
+macro_rules! area_impl {
+    () => {
+        /// A disk (center, unit normal, radius) sampled uniformly by area
+        /// through the concentric map (density 1/(πR²) per m²).
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct UniformDiskArea {
+            center: V3,
+            frame: Frame,
+            radius: Real,
+        }
+
+        impl UniformDiskArea {
+            /// The disk; `normal` need not be unit. Errors on non-finite
+            /// input, a zero normal or a radius ≤ 0.
+            pub fn new(center: V3, normal: V3, radius: Real) -> Result<Self, SamplingError> {
+                crate::error::finite3("center", widen(center))?;
+                crate::error::finite3("normal", widen(normal))?;
+                crate::error::finite("radius", radius as f64)?;
+                let len = normal.length();
+                if !(len > 0.0) || !len.is_finite() {
+                    return Err(SamplingError::ZeroVector { field: "normal" });
+                }
+                if !(radius > 0.0) {
+                    return Err(SamplingError::OutOfRange {
+                        field: "radius",
+                        value: radius as f64,
+                        range: "(0, ∞)",
+                    });
+                }
+                Ok(UniformDiskArea {
+                    center,
+                    frame: Frame::from_normal(normal / len),
+                    radius,
+                })
+            }
+
+            /// The disk's area πR².
+            #[inline]
+            pub fn area(&self) -> Real {
+                PI * self.radius * self.radius
+            }
+
+            /// A point uniform on the disk, density 1/(πR²) per m².
+            #[inline]
+            pub fn sample(&self, u: V2) -> PointSample {
+                let d = sample_concentric_disk(u) * self.radius;
+                PointSample {
+                    point: self.center + self.frame.x * d.x + self.frame.y * d.y,
+                    normal: self.frame.z,
+                    pdf_area: 1.0 / self.area(),
+                }
+            }
+
+            /// Density per m² of `p` (on the disk's plane): 1/(πR²) within
+            /// the radius (plus a few ulps), else 0.
+            #[inline]
+            pub fn pdf(&self, p: V3) -> Real {
+                let l = self.frame.to_local(p - self.center);
+                let r2 = self.radius * self.radius;
+                if l.x * l.x + l.y * l.y <= r2 * (1.0 + 8.0 * Real::EPSILON) {
+                    1.0 / self.area()
+                } else {
+                    0.0
+                }
+            }
+
+            /// The u that [`UniformDiskArea::sample`] maps to `p`.
+            #[inline]
+            pub fn invert(&self, p: V3) -> V2 {
+                let l = self.frame.to_local(p - self.center) / self.radius;
+                invert_concentric_disk(V2::new(l.x, l.y))
+            }
+        }
+
+        /// A parallelogram corner + s·edge0 + t·edge1, (s, t) ∈ [0, 1]²,
+        /// sampled uniformly by area (density 1/|edge0 × edge1| per m²).
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct UniformParallelogram {
+            corner: V3,
+            edge0: V3,
+            edge1: V3,
+            normal: V3,
+            area: Real,
+        }
+
+        impl UniformParallelogram {
+            /// The parallelogram; its normal is edge0 × edge1 normalised.
+            /// Errors on non-finite input or parallel/zero edges.
+            pub fn new(corner: V3, edge0: V3, edge1: V3) -> Result<Self, SamplingError> {
+                crate::error::finite3("corner", widen(corner))?;
+                crate::error::finite3("edge0", widen(edge0))?;
+                crate::error::finite3("edge1", widen(edge1))?;
+                let n = edge0.cross(edge1);
+                let area = n.length();
+                if !(area > 0.0) || !area.is_finite() {
+                    return Err(SamplingError::Degenerate {
+                        what: "parallelogram with zero area (parallel or zero edges)",
+                    });
+                }
+                Ok(UniformParallelogram {
+                    corner,
+                    edge0,
+                    edge1,
+                    normal: n / area,
+                    area,
+                })
+            }
+
+            /// The area |edge0 × edge1|.
+            #[inline]
+            pub fn area(&self) -> Real {
+                self.area
+            }
+
+            /// A point uniform on the parallelogram: corner + u₀ edge0 +
+            /// u₁ edge1, density 1/area per m².
+            #[inline]
+            pub fn sample(&self, u: V2) -> PointSample {
+                PointSample {
+                    point: self.corner + self.edge0 * u.x + self.edge1 * u.y,
+                    normal: self.normal,
+                    pdf_area: 1.0 / self.area,
+                }
+            }
+
+            /// The parameters (s, t) of `p` projected on the plane.
+            #[inline]
+            fn parameters(&self, p: V3) -> V2 {
+                let d = p - self.corner;
+                let a = self.edge0.dot(self.edge0);
+                let b = self.edge0.dot(self.edge1);
+                let c = self.edge1.dot(self.edge1);
+                let r0 = d.dot(self.edge0);
+                let r1 = d.dot(self.edge1);
+                let det = a * c - b * b;
+                V2::new((c * r0 - b * r1) / det, (a * r1 - b * r0) / det)
+            }
+
+            /// Density per m² of `p` (on the plane): 1/area inside (with a
+            /// few ulps of slack), else 0.
+            #[inline]
+            pub fn pdf(&self, p: V3) -> Real {
+                let st = self.parameters(p);
+                let tol = 16.0 * Real::EPSILON;
+                if st.x >= -tol && st.x <= 1.0 + tol && st.y >= -tol && st.y <= 1.0 + tol {
+                    1.0 / self.area
+                } else {
+                    0.0
+                }
+            }
+
+            /// The u that [`UniformParallelogram::sample`] maps to `p`.
+            #[inline]
+            pub fn invert(&self, p: V3) -> V2 {
+                self.parameters(p).clamp(V2::ZERO, V2::ONE)
+            }
+        }
+    };
+}
+
+crate::precision::both_precisions!(area_impl);

@@ -1,0 +1,102 @@
+//! Uniform maps from the unit square to the unit disk: the concentric map
+//! (Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square", in
+//! the single-branch form attributed to Dave Cline) and the polar map.
+//!
+//! Both have density 1/π per unit area on the unit disk.
+
+macro_rules! disk_impl {
+    () => {
+        /// The concentric map in polar form: (r, sin φ, cos φ) with r ≥ 0.
+        ///
+        /// With a = 2u₀ − 1, b = 2u₁ − 1: if |a| > |b|, r = |a| and
+        /// φ = (π/4)(b/a) (+π if a < 0); otherwise r = |b| and
+        /// φ = π/2 − (π/4)(a/b) (+π if b < 0). r is exactly max(|a|, |b|),
+        /// which callers use to form 1 − r² without cancellation.
+        #[inline(always)]
+        pub fn concentric_polar(u: V2) -> (Real, Real, Real) {
+            let a = 2.0 * u.x - 1.0;
+            let b = 2.0 * u.y - 1.0;
+            if a == 0.0 && b == 0.0 {
+                return (0.0, 0.0, 1.0);
+            }
+            if a.abs() > b.abs() {
+                let (s, c) = sin_cos_quarter((PI / 4.0) * (b / a));
+                let sign = if a < 0.0 { -1.0 } else { 1.0 };
+                (a.abs(), sign * s, sign * c)
+            } else {
+                // φ = π/2 − x: sin φ = cos x, cos φ = sin x.
+                let (s, c) = sin_cos_quarter((PI / 4.0) * (a / b));
+                let sign = if b < 0.0 { -1.0 } else { 1.0 };
+                (b.abs(), sign * c, sign * s)
+            }
+        }
+
+        /// A point of the unit disk, uniform in area (density 1/π per unit
+        /// area), by Shirley and Chiu's concentric map; low distortion, so
+        /// stratification of `u` survives.
+        #[inline]
+        pub fn sample_concentric_disk(u: V2) -> V2 {
+            let (r, s, c) = concentric_polar(u);
+            V2::new(r * c, r * s)
+        }
+
+        /// The density of [`sample_concentric_disk`]: 1/π per unit area on
+        /// the closed unit disk, 0 outside.
+        #[inline]
+        pub fn pdf_concentric_disk(p: V2) -> Real {
+            if p.length_squared() <= 1.0 + 4.0 * Real::EPSILON {
+                1.0 / PI
+            } else {
+                0.0
+            }
+        }
+
+        /// The u that [`sample_concentric_disk`] maps to `p` (a point of the
+        /// unit disk). Undoes the wedge map: for |x| ≥ |y|, a = ±r and
+        /// b = a·(4/π)·atan(y/x); otherwise b = ±r and a = b·(4/π)·atan(x/y).
+        #[inline]
+        pub fn invert_concentric_disk(p: V2) -> V2 {
+            let r = p.length();
+            let (a, b) = if r == 0.0 {
+                (0.0, 0.0)
+            } else if p.x.abs() >= p.y.abs() {
+                let a = if p.x < 0.0 { -r } else { r };
+                (a, a * (4.0 / PI) * (p.y / p.x).atan())
+            } else {
+                let b = if p.y < 0.0 { -r } else { r };
+                (b * (4.0 / PI) * (p.x / p.y).atan(), b)
+            };
+            V2::new(
+                ((a + 1.0) * 0.5).clamp(0.0, 1.0),
+                ((b + 1.0) * 0.5).clamp(0.0, 1.0),
+            )
+        }
+
+        /// A point of the unit disk, uniform in area, by the polar map
+        /// r = √u₀, φ = 2πu₁ (density 1/π per unit area). Simpler than the
+        /// concentric map but it distorts strata near the center.
+        #[inline]
+        pub fn sample_uniform_disk(u: V2) -> V2 {
+            let r = u.x.sqrt();
+            let (s, c) = sin_cos_2pi(u.y);
+            V2::new(r * c, r * s)
+        }
+
+        /// The density of [`sample_uniform_disk`]: 1/π per unit area on the
+        /// closed unit disk, 0 outside.
+        #[inline]
+        pub fn pdf_uniform_disk(p: V2) -> Real {
+            pdf_concentric_disk(p)
+        }
+
+        /// The u that [`sample_uniform_disk`] maps to `p`: u₀ = r²,
+        /// u₁ = φ/2π.
+        #[inline]
+        pub fn invert_uniform_disk(p: V2) -> V2 {
+            let f = azimuth_fraction(V3::new(p.x, p.y, 0.0));
+            V2::new(p.length_squared().min(1.0), f)
+        }
+    };
+}
+
+crate::precision::both_precisions!(disk_impl);

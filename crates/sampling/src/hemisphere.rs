@@ -1,0 +1,68 @@
+//! Uniform and cosine-weighted hemispheres about +z.
+//!
+//! Uniform: p(ω) = 1/(2π) per steradian for cos θ ≥ 0, by z = u₀, φ = 2πu₁
+//! (pbrt-v4 §A.5.2). Cosine-weighted: p(ω) = cos θ/π per steradian, by
+//! Malley's method, lifting a concentric-disk sample to the hemisphere
+//! (Shirley & Chiu 1997; pbrt-v4 §A.5.3), which keeps its low distortion.
+
+macro_rules! hemisphere_impl {
+    () => {
+        /// A direction uniform on the upper hemisphere (cos θ ≥ 0):
+        /// cos θ = u₀, sin θ = √((1 − u₀)(1 + u₀)), φ = 2πu₁.
+        #[inline]
+        pub fn sample_uniform_hemisphere(u: V2) -> V3 {
+            let z = u.x;
+            let r = ((1.0 - z) * (1.0 + z)).max(0.0).sqrt();
+            direction_from(r, z, u.y)
+        }
+
+        /// The density of [`sample_uniform_hemisphere`]: 1/(2π) per
+        /// steradian for w_z ≥ 0, else 0.
+        #[inline]
+        pub fn pdf_uniform_hemisphere(w: V3) -> Real {
+            if w.z >= 0.0 {
+                1.0 / (2.0 * PI)
+            } else {
+                0.0
+            }
+        }
+
+        /// The u that [`sample_uniform_hemisphere`] maps to `w`:
+        /// u₀ = cos θ, u₁ = φ/2π.
+        #[inline]
+        pub fn invert_uniform_hemisphere(w: V3) -> V2 {
+            V2::new(w.z.clamp(0.0, 1.0), azimuth_fraction(w))
+        }
+
+        /// A direction with density cos θ/π per steradian (Malley's method):
+        /// a concentric-disk point (r, φ) lifted to z = √((1 − r)(1 + r)).
+        ///
+        /// r is capped at the largest value below 1, so u on the square's
+        /// edge (u exactly 0 or 1) gives z ≥ √ε (1.5e-8 in f64, 3.5e-4 in
+        /// f32) instead of a horizon direction of pdf 0; the capped set has
+        /// probability 0 for u ∈ [0, 1)², so the density is unchanged.
+        #[inline]
+        pub fn sample_cosine_hemisphere(u: V2) -> V3 {
+            let (r, s, c) = concentric_polar(u);
+            let r = r.min(ONE_MINUS_EPSILON);
+            let z = ((1.0 - r) * (1.0 + r)).sqrt();
+            V3::new(r * c, r * s, z)
+        }
+
+        /// The density of [`sample_cosine_hemisphere`]: cos θ/π per
+        /// steradian for w_z > 0, else 0.
+        #[inline]
+        pub fn pdf_cosine_hemisphere(w: V3) -> Real {
+            w.z.max(0.0) * (1.0 / PI)
+        }
+
+        /// The u that [`sample_cosine_hemisphere`] maps to `w`: the
+        /// concentric-disk inverse of (w_x, w_y).
+        #[inline]
+        pub fn invert_cosine_hemisphere(w: V3) -> V2 {
+            invert_concentric_disk(V2::new(w.x, w.y))
+        }
+    };
+}
+
+crate::precision::both_precisions!(hemisphere_impl);

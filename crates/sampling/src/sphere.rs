@@ -1,0 +1,35 @@
+//! Uniform directions on the whole sphere: p(ω) = 1/(4π) per steradian,
+//! by cos θ = 1 − 2u₀, φ = 2πu₁ (Archimedes' hat-box theorem; pbrt-v4
+//! §A.5.1).
+
+macro_rules! sphere_impl {
+    () => {
+        /// A direction uniform on the unit sphere: cos θ = 1 − 2u₀,
+        /// sin θ = 2√(u₀(1 − u₀)) (no cancellation near the poles), φ = 2πu₁.
+        #[inline]
+        pub fn sample_uniform_sphere(u: V2) -> V3 {
+            let z = 1.0 - 2.0 * u.x;
+            let r = 2.0 * (u.x * (1.0 - u.x)).max(0.0).sqrt();
+            direction_from(r, z, u.y)
+        }
+
+        /// The density of [`sample_uniform_sphere`]: 1/(4π) per steradian
+        /// everywhere.
+        #[inline]
+        pub fn pdf_uniform_sphere(_w: V3) -> Real {
+            1.0 / (4.0 * PI)
+        }
+
+        /// The u that [`sample_uniform_sphere`] maps to `w`:
+        /// u₀ = (1 − cos θ)/2, u₁ = φ/2π.
+        #[inline]
+        pub fn invert_uniform_sphere(w: V3) -> V2 {
+            V2::new(
+                (0.5 * one_minus_cos_theta(w)).clamp(0.0, 1.0),
+                azimuth_fraction(w),
+            )
+        }
+    };
+}
+
+crate::precision::both_precisions!(sphere_impl);

@@ -1,0 +1,124 @@
+//! Uniform sampling of a planar triangle by area.
+//!
+//! Barycentrics b₀ = 1 − √u₀, b₁ = u₁√u₀ (Osada, Funkhouser, Chazelle and
+//! Dobkin 2002, "Shape Distributions", eq. 1; Turk 1990), density 1/A per
+//! unit area, inverse u₀ = (1 − b₀)², u₁ = b₁/(1 − b₀).
+
+macro_rules! triangle_impl {
+    () => {
+        /// A planar triangle sampled uniformly by area (density 1/A per m²).
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct UniformTriangle {
+            v0: V3,
+            e1: V3,
+            e2: V3,
+            normal: V3,
+            area: Real,
+        }
+
+        impl UniformTriangle {
+            /// The triangle (v0, v1, v2); its normal is (v1 − v0) × (v2 − v0)
+            /// normalised (right-hand rule). Errors on non-finite vertices or
+            /// zero area.
+            pub fn new(v0: V3, v1: V3, v2: V3) -> Result<Self, SamplingError> {
+                crate::error::finite3("v0", widen(v0))?;
+                crate::error::finite3("v1", widen(v1))?;
+                crate::error::finite3("v2", widen(v2))?;
+                let e1 = v1 - v0;
+                let e2 = v2 - v0;
+                let n = e1.cross(e2);
+                let len = n.length();
+                if !(len > 0.0) || !len.is_finite() {
+                    return Err(SamplingError::Degenerate {
+                        what: "triangle with zero area",
+                    });
+                }
+                Ok(UniformTriangle {
+                    v0,
+                    e1,
+                    e2,
+                    normal: n / len,
+                    area: 0.5 * len,
+                })
+            }
+
+            /// The triangle's area.
+            #[inline]
+            pub fn area(&self) -> Real {
+                self.area
+            }
+
+            /// The triangle's unit normal (right-hand rule).
+            #[inline]
+            pub fn normal(&self) -> V3 {
+                self.normal
+            }
+
+            /// Barycentrics (b₀, b₁, b₂) of a uniform point:
+            /// b₀ = 1 − √u₀, b₁ = u₁√u₀, b₂ = 1 − b₀ − b₁.
+            #[inline]
+            pub fn sample_barycentrics(u: V2) -> V3 {
+                let s = u.x.sqrt();
+                let b0 = 1.0 - s;
+                let b1 = u.y * s;
+                V3::new(b0, b1, (1.0 - b0 - b1).max(0.0))
+            }
+
+            /// A point uniform on the triangle, density 1/A per m².
+            #[inline]
+            pub fn sample(&self, u: V2) -> PointSample {
+                let b = Self::sample_barycentrics(u);
+                PointSample {
+                    point: self.v0 + self.e1 * b.y + self.e2 * b.z,
+                    normal: self.normal,
+                    pdf_area: 1.0 / self.area,
+                }
+            }
+
+            /// Barycentrics (b₀, b₁, b₂) of `p` projected on the plane.
+            #[inline]
+            pub fn barycentrics(&self, p: V3) -> V3 {
+                // Solve p − v0 = b₁ e1 + b₂ e2 by the normal equations.
+                let d = p - self.v0;
+                let d11 = self.e1.dot(self.e1);
+                let d12 = self.e1.dot(self.e2);
+                let d22 = self.e2.dot(self.e2);
+                let r1 = d.dot(self.e1);
+                let r2 = d.dot(self.e2);
+                let det = d11 * d22 - d12 * d12;
+                let b1 = (d22 * r1 - d12 * r2) / det;
+                let b2 = (d11 * r2 - d12 * r1) / det;
+                V3::new(1.0 - b1 - b2, b1, b2)
+            }
+
+            /// Density per m² of the point `p` (on the triangle's plane):
+            /// 1/A inside (barycentrics ≥ −a few ulps), 0 outside.
+            #[inline]
+            pub fn pdf(&self, p: V3) -> Real {
+                let b = self.barycentrics(p);
+                let tol = -16.0 * Real::EPSILON;
+                if b.x >= tol && b.y >= tol && b.z >= tol {
+                    1.0 / self.area
+                } else {
+                    0.0
+                }
+            }
+
+            /// The u that [`UniformTriangle::sample`] maps to `p`:
+            /// u₀ = (1 − b₀)², u₁ = b₁/(1 − b₀).
+            #[inline]
+            pub fn invert(&self, p: V3) -> V2 {
+                let b = self.barycentrics(p);
+                let s = (1.0 - b.x).clamp(0.0, 1.0);
+                let u1 = if s > 0.0 {
+                    (b.y / s).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                V2::new(s * s, u1)
+            }
+        }
+    };
+}
+
+crate::precision::both_precisions!(triangle_impl);
