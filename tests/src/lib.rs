@@ -1,1 +1,92 @@
 //! Cross-crate validation suites for lambert; the suites live in `tests/`.
+//! This library holds what they share: the catalogue of hard cases.
+
+use glam::DVec3;
+use lambert_sampling::catalog::DirectionWarpSpec;
+
+/// A named warp configuration that the suites exercise.
+#[derive(Clone, Debug)]
+pub struct Case {
+    /// Short label for messages.
+    pub label: &'static str,
+    /// The warp and its parameters.
+    pub spec: DirectionWarpSpec,
+}
+
+/// 1 − cos θ for a cone of half-angle `theta`, without cancellation.
+pub fn one_minus_cos(theta: f64) -> f64 {
+    let s = (0.5 * theta).sin();
+    2.0 * s * s
+}
+
+/// Every direction warp at ordinary and hard parameters: cones from 1e-8 rad
+/// to π, spheres overhead, tilted, tiny and far, nearly touching, grazing.
+pub fn direction_cases() -> Vec<Case> {
+    let mut cases = vec![
+        Case {
+            label: "uniform hemisphere",
+            spec: DirectionWarpSpec::UniformHemisphere,
+        },
+        Case {
+            label: "cosine hemisphere",
+            spec: DirectionWarpSpec::CosineHemisphere,
+        },
+        Case {
+            label: "uniform sphere",
+            spec: DirectionWarpSpec::UniformSphere,
+        },
+    ];
+    for (label, theta) in [
+        ("cone 1e-8 rad", 1e-8),
+        ("cone 1e-6 rad", 1e-6),
+        ("cone 1e-3 rad", 1e-3),
+        ("cone 1 rad", 1.0),
+        ("cone 3 rad", 3.0),
+        ("cone pi rad", std::f64::consts::PI),
+    ] {
+        cases.push(Case {
+            label,
+            spec: DirectionWarpSpec::UniformCone {
+                one_minus_cos_theta_max: one_minus_cos(theta),
+            },
+        });
+    }
+    let tilt = 30f64.to_radians();
+    for (label, center, radius) in [
+        ("sphere overhead", DVec3::new(0.0, 0.0, 10.0), 1.0),
+        (
+            "sphere tilted 30 deg",
+            DVec3::new(10.0 * tilt.sin(), 0.0, 10.0 * tilt.cos()),
+            1.0,
+        ),
+        ("sphere tiny and far", DVec3::new(0.0, 0.0, 1e6), 1.0),
+        (
+            "sphere nearly touching",
+            DVec3::new(0.3, -0.2, 1.0 + 1e-9),
+            1.0,
+        ),
+        ("sphere grazing", DVec3::new(5.0, 3.0, 0.01), 0.5),
+    ] {
+        cases.push(Case {
+            label,
+            spec: DirectionWarpSpec::SphereLight { center, radius },
+        });
+    }
+    cases
+}
+
+/// Samples on and near the edges of the unit square: 0, tiny, interior,
+/// 1 − ε (for f64 and for f32) and exactly 1.
+pub fn edge_values() -> Vec<f64> {
+    vec![
+        0.0,
+        1e-12,
+        1e-7,
+        0.25,
+        0.5,
+        0.75,
+        1.0 - f32::EPSILON as f64 / 2.0,
+        1.0 - f64::EPSILON / 2.0,
+        1.0,
+    ]
+}

@@ -26,6 +26,7 @@
 pub(crate) mod precision;
 
 pub mod area;
+pub mod catalog;
 pub mod cone;
 pub mod disk;
 pub mod error;

@@ -29,6 +29,7 @@ macro_rules! sphere_light_impl {
             distance: Real,
             sin_theta_max: Real,
             sin2_theta_max: Real,
+            inside_limit: Real,
         }
 
         impl SphereSolidAngle {
@@ -61,7 +62,15 @@ macro_rules! sphere_light_impl {
                 let sin2_theta_max = sin_theta_max * sin_theta_max;
                 let cos_theta_max = ((distance - radius) * (distance + radius)).sqrt() / distance;
                 let cone = UniformCone::from_one_minus_cos(sin2_theta_max / (1.0 + cos_theta_max))?;
+                // Rotating a direction into the cone's frame and back moves it
+                // by up to ~16ε in angle (each frame axis and each dot product
+                // carries a few ulps), which changes 1 − cos θ at the rim by
+                // sin θmax · 16ε. Directions within that of the rim count as
+                // inside, so pdf(sample(u)) is the sampled density.
+                let h = cone.one_minus_cos_theta_max();
+                let inside_limit = h + 16.0 * Real::EPSILON * (sin_theta_max + h);
                 Ok(SphereSolidAngle {
+                    inside_limit,
                     frame: Frame::from_normal(axis / distance),
                     cone,
                     center,
@@ -128,10 +137,19 @@ macro_rules! sphere_light_impl {
             }
 
             /// The density per steradian of direction `w` (unit): 1/Ω inside
-            /// the subtended cone, 0 outside.
+            /// the subtended cone, 0 outside. "Inside" includes a band of
+            /// 16ε in angle beyond the rim, the rounding of the frame
+            /// rotation: in f32 a direction off the coordinate axes is only
+            /// located to ~1e-7 rad, so for spheres under ~1e-5 rad the f32
+            /// pdf is a blurred indicator (its integral exceeds 1 by about
+            /// 32ε/θmax); f64 resolves spheres down to ~1e-12 rad.
             #[inline]
             pub fn pdf(&self, w: V3) -> Real {
-                self.cone.pdf(self.frame.to_local(w))
+                if one_minus_cos_theta(self.frame.to_local(w)) <= self.inside_limit {
+                    1.0 / self.cone.solid_angle()
+                } else {
+                    0.0
+                }
             }
 
             /// The u that [`SphereSolidAngle::sample`] maps to `w`.
