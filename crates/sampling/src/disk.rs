@@ -16,19 +16,18 @@ macro_rules! disk_impl {
         pub fn concentric_polar(u: V2) -> (Real, Real, Real) {
             let a = 2.0 * u.x - 1.0;
             let b = 2.0 * u.y - 1.0;
-            if a == 0.0 && b == 0.0 {
-                return (0.0, 0.0, 1.0);
-            }
-            if a.abs() > b.abs() {
-                let (s, c) = sin_cos_quarter((PI / 4.0) * (b / a));
-                let sign = if a < 0.0 { -1.0 } else { 1.0 };
-                (a.abs(), sign * s, sign * c)
-            } else {
-                // φ = π/2 − x: sin φ = cos x, cos φ = sin x.
-                let (s, c) = sin_cos_quarter((PI / 4.0) * (a / b));
-                let sign = if b < 0.0 { -1.0 } else { 1.0 };
-                (b.abs(), sign * c, sign * s)
-            }
+            // Both wedges at once, resolved by selects rather than branches
+            // (the wedge is random, so a branch would mispredict half the
+            // time): t = numerator/denominator ∈ [−1, 1], signed radius den.
+            let a_wins = a.abs() > b.abs();
+            let (num, den) = if a_wins { (b, a) } else { (a, b) };
+            let t = if den == 0.0 { 0.0 } else { num / den };
+            let (s, c) = sin_cos_quarter((PI / 4.0) * t);
+            // a wins: φ = (π/4)t, (cos φ, sin φ) = (c, s);
+            // b wins: φ = π/2 − (π/4)t, (cos φ, sin φ) = (s, c).
+            let (cos_phi, sin_phi) = if a_wins { (c, s) } else { (s, c) };
+            let sign = (1.0 as Real).copysign(den);
+            (den.abs(), sign * sin_phi, sign * cos_phi)
         }
 
         /// A point of the unit disk, uniform in area (density 1/π per unit

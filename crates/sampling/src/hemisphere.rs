@@ -49,6 +49,18 @@ macro_rules! hemisphere_impl {
             V3::new(r * c, r * s, z)
         }
 
+        /// [`sample_cosine_hemisphere`] over a slice: `out[i]` is the
+        /// direction for `u[i]` (the shorter length wins). A loop of
+        /// independent, branch-free samples lets the compiler overlap and
+        /// vectorise them, which a sample-at-a-time loop that feeds each
+        /// result into the next step cannot.
+        #[inline]
+        pub fn sample_cosine_hemisphere_batch(u: &[V2], out: &mut [V3]) {
+            for (o, &ui) in out.iter_mut().zip(u) {
+                *o = sample_cosine_hemisphere(ui);
+            }
+        }
+
         /// The density of [`sample_cosine_hemisphere`]: cos θ/π per
         /// steradian for w_z > 0, else 0.
         #[inline]

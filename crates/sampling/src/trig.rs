@@ -47,16 +47,18 @@ macro_rules! trig_impl {
         #[inline(always)]
         pub fn sin_cos_2pi(u: Real) -> (Real, Real) {
             let four_u = 4.0 * u;
-            let q = four_u.round();
-            let r = four_u - q;
+            // q = round(4u) by truncation of 4u + ½ (u ≥ 0): a single
+            // conversion instruction, where `round` is a libm call on
+            // baseline x86-64.
+            let q = (four_u + 0.5) as i32;
+            let r = four_u - q as Real;
             let (s, c) = sin_cos_quarter(r * (PI / 2.0));
-            // Rotate by q quarter turns: q mod 4 ∈ {0, 1, 2, 3}.
-            match (q as i32) & 3 {
-                0 => (s, c),
-                1 => (c, -s),
-                2 => (-s, -c),
-                _ => (-c, s),
-            }
+            // Rotate by q quarter turns without branches (random quadrants
+            // would mispredict): odd q swaps (s, c) → (c, −s), q & 2 negates.
+            let odd = (q & 1) != 0;
+            let (s1, c1) = if odd { (c, -s) } else { (s, c) };
+            let sign = 1.0 - (q & 2) as Real;
+            (s1 * sign, c1 * sign)
         }
     };
 }

@@ -1,0 +1,117 @@
+//! ns/sample of every warp, RNG included, in f32 and f64, with
+//! `rand_distr::UnitSphere` in the same run as an in-run reference.
+//! Reference figures (DESIGN.md, one thread): pbrt-v4 cosine hemisphere
+//! 14.2 ns, uniform cone 17.5 ns, spherical triangle 139 ns, spherical
+//! rectangle 182 ns; Mitsuba 3 vectorised cosine hemisphere 2.7 ns.
+
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use glam::{DVec3, Vec3};
+use lambert_benches::{config, next_u32x2, next_u64x2, rng, BATCH};
+use lambert_sampling::{f32 as s32, f64 as s64};
+use rand_distr::{Distribution, UnitSphere};
+
+macro_rules! bench_warp {
+    ($group:expr, $name:expr, $next:ident, $zero:expr, |$u:ident| $body:expr) => {
+        $group.bench_function($name, |b| {
+            let mut r = rng();
+            b.iter(|| {
+                let mut acc = $zero;
+                for _ in 0..BATCH {
+                    let $u = $next(&mut r);
+                    acc += $body;
+                }
+                black_box(acc)
+            })
+        });
+    };
+}
+
+fn warps(c: &mut Criterion) {
+    let mut g = c.benchmark_group("warp");
+    g.throughput(Throughput::Elements(BATCH));
+
+    // In-run reference: rand_distr's rejection-free UnitSphere (f64).
+    g.bench_function("rand_distr UnitSphere f64", |b| {
+        let mut r = rng();
+        b.iter(|| {
+            let mut acc = DVec3::ZERO;
+            for _ in 0..BATCH {
+                let v: [f64; 3] = UnitSphere.sample(&mut r);
+                acc += DVec3::from_array(v);
+            }
+            black_box(acc)
+        })
+    });
+    bench_warp!(g, "rng only f32", next_u32x2, Vec3::ZERO, |u| u.extend(0.0));
+    bench_warp!(g, "rng only f64", next_u64x2, DVec3::ZERO, |u| u
+        .extend(0.0));
+
+    bench_warp!(g, "uniform hemisphere f32", next_u32x2, Vec3::ZERO, |u| {
+        s32::sample_uniform_hemisphere(u)
+    });
+    bench_warp!(g, "uniform hemisphere f64", next_u64x2, DVec3::ZERO, |u| {
+        s64::sample_uniform_hemisphere(u)
+    });
+    bench_warp!(g, "cosine hemisphere f32", next_u32x2, Vec3::ZERO, |u| {
+        s32::sample_cosine_hemisphere(u)
+    });
+    bench_warp!(g, "cosine hemisphere f64", next_u64x2, DVec3::ZERO, |u| {
+        s64::sample_cosine_hemisphere(u)
+    });
+    g.bench_function("cosine hemisphere batch f32", |b| {
+        let mut r = rng();
+        let mut us = vec![glam::Vec2::ZERO; BATCH as usize];
+        let mut out = vec![Vec3::ZERO; BATCH as usize];
+        b.iter(|| {
+            for u in us.iter_mut() {
+                *u = next_u32x2(&mut r);
+            }
+            s32::sample_cosine_hemisphere_batch(&us, &mut out);
+            black_box(&out);
+        })
+    });
+    bench_warp!(g, "uniform sphere f32", next_u32x2, Vec3::ZERO, |u| {
+        s32::sample_uniform_sphere(u)
+    });
+    bench_warp!(g, "uniform sphere f64", next_u64x2, DVec3::ZERO, |u| {
+        s64::sample_uniform_sphere(u)
+    });
+    let cone32 = s32::UniformCone::from_theta_max(0.3).unwrap();
+    let cone64 = s64::UniformCone::from_theta_max(0.3).unwrap();
+    bench_warp!(g, "uniform cone f32", next_u32x2, Vec3::ZERO, |u| cone32
+        .sample(u));
+    bench_warp!(g, "uniform cone f64", next_u64x2, DVec3::ZERO, |u| cone64
+        .sample(u));
+    let sph32 = s32::SphereSolidAngle::new(Vec3::ZERO, Vec3::new(5.0, 0.0, 8.66), 1.0).unwrap();
+    let sph64 = s64::SphereSolidAngle::new(DVec3::ZERO, DVec3::new(5.0, 0.0, 8.66), 1.0).unwrap();
+    bench_warp!(g, "sphere light f32", next_u32x2, Vec3::ZERO, |u| sph32
+        .sample(u)
+        .direction);
+    bench_warp!(g, "sphere light f64", next_u64x2, DVec3::ZERO, |u| sph64
+        .sample(u)
+        .direction);
+    g.bench_function("concentric disk f32", |b| {
+        let mut r = rng();
+        b.iter(|| {
+            let mut acc = glam::Vec2::ZERO;
+            for _ in 0..BATCH {
+                acc += s32::sample_concentric_disk(next_u32x2(&mut r));
+            }
+            black_box(acc)
+        })
+    });
+    let tri = s64::UniformTriangle::new(DVec3::ZERO, DVec3::X, DVec3::Y).unwrap();
+    bench_warp!(g, "triangle area f64", next_u64x2, DVec3::ZERO, |u| tri
+        .sample(u)
+        .point);
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = warps
+}
+criterion_main!(benches);
