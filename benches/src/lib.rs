@@ -42,10 +42,10 @@ pub fn next_u64x2(rng: &mut Pcg64Mcg) -> DVec2 {
 
 /// A seeded 128-bit multiplicative PCG (fast, small state).
 pub fn rng() -> Pcg64Mcg {
-    rand::SeedableRng::seed_from_u64(0x6c61_6d62_6572_74)
+    rand::SeedableRng::seed_from_u64(0x006c_616d_6265_7274)
 }
 
 /// A seeded 32-bit PCG, for comparison with pbrt-v4's PCG32.
 pub fn rng32() -> Pcg32 {
-    rand::SeedableRng::seed_from_u64(0x6c61_6d62_6572_74)
+    rand::SeedableRng::seed_from_u64(0x006c_616d_6265_7274)
 }
