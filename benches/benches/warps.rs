@@ -109,9 +109,14 @@ fn warps(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group! {
-    name = benches;
-    config = config();
-    targets = warps
+// criterion_group! generates an undocumented pub fn.
+#[allow(missing_docs)]
+mod group {
+    use super::*;
+    criterion_group! {
+        name = benches;
+        config = config();
+        targets = warps
+    }
 }
-criterion_main!(benches);
+criterion_main!(group::benches);
