@@ -72,6 +72,52 @@ pub fn direction_cases() -> Vec<Case> {
             spec: DirectionWarpSpec::SphereLight { center, radius },
         });
     }
+    cases.extend([
+        Case {
+            label: "triangle area",
+            spec: DirectionWarpSpec::TriangleArea {
+                vertices: [
+                    DVec3::new(-1.0, -1.0, 3.0),
+                    DVec3::new(2.0, -0.5, 3.5),
+                    DVec3::new(0.0, 1.5, 2.5),
+                ],
+            },
+        },
+        Case {
+            label: "triangle area grazing",
+            spec: DirectionWarpSpec::TriangleArea {
+                vertices: [
+                    DVec3::new(1.0, 0.0, 0.05),
+                    DVec3::new(3.0, 0.0, 0.01),
+                    DVec3::new(2.0, 1.0, 0.2),
+                ],
+            },
+        },
+        Case {
+            label: "disk area coaxial",
+            spec: DirectionWarpSpec::DiskArea {
+                center: DVec3::new(0.0, 0.0, 2.0),
+                normal: DVec3::new(0.0, 0.0, -1.0),
+                radius: 0.5,
+            },
+        },
+        Case {
+            label: "disk area tilted",
+            spec: DirectionWarpSpec::DiskArea {
+                center: DVec3::new(1.0, 0.5, 2.0),
+                normal: DVec3::new(0.3, -1.0, 0.4),
+                radius: 0.7,
+            },
+        },
+        Case {
+            label: "parallelogram area",
+            spec: DirectionWarpSpec::ParallelogramArea {
+                corner: DVec3::new(-0.5, -0.5, 1.0),
+                edge0: DVec3::new(1.0, 0.0, 0.2),
+                edge1: DVec3::new(0.3, 1.0, 0.0),
+            },
+        },
+    ]);
     cases
 }
 

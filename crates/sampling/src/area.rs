@@ -56,12 +56,17 @@ macro_rules! area_impl {
             }
 
             /// Density per m² of `p` (on the disk's plane): 1/(πR²) within
-            /// the radius (plus a few ulps), else 0.
+            /// the radius, else 0. Points within rounding of the rim,
+            /// 32ε·(|p|∞ + |center|∞ + R), count as inside, so a rim sample
+            /// recovered by intersecting a ray keeps its density.
             #[inline]
             pub fn pdf(&self, p: V3) -> Real {
                 let l = self.frame.to_local(p - self.center);
-                let r2 = self.radius * self.radius;
-                if l.x * l.x + l.y * l.y <= r2 * (1.0 + 8.0 * Real::EPSILON) {
+                let slack = 32.0
+                    * Real::EPSILON
+                    * (p.abs().max_element() + self.center.abs().max_element() + self.radius);
+                let limit = self.radius + slack;
+                if l.x * l.x + l.y * l.y <= limit * limit {
                     1.0 / self.area()
                 } else {
                     0.0
@@ -110,6 +115,18 @@ macro_rules! area_impl {
                 })
             }
 
+            /// The corner.
+            #[inline]
+            pub fn corner(&self) -> V3 {
+                self.corner
+            }
+
+            /// The unit normal, edge0 × edge1 normalised.
+            #[inline]
+            pub fn normal(&self) -> V3 {
+                self.normal
+            }
+
             /// The area |edge0 × edge1|.
             #[inline]
             pub fn area(&self) -> Real {
@@ -140,12 +157,15 @@ macro_rules! area_impl {
                 V2::new((c * r0 - b * r1) / det, (a * r1 - b * r0) / det)
             }
 
-            /// Density per m² of `p` (on the plane): 1/area inside (with a
-            /// few ulps of slack), else 0.
+            /// Density per m² of `p` (on the plane): 1/area inside, else 0.
+            /// Parameters within rounding of the edges,
+            /// 32ε·(|p|∞ + |corner|∞)/min edge length, count as inside.
             #[inline]
             pub fn pdf(&self, p: V3) -> Real {
                 let st = self.parameters(p);
-                let tol = 16.0 * Real::EPSILON;
+                let scale = p.abs().max_element() + self.corner.abs().max_element();
+                let shortest = self.edge0.length().min(self.edge1.length());
+                let tol = 32.0 * Real::EPSILON * (1.0 + scale / shortest);
                 if st.x >= -tol && st.x <= 1.0 + tol && st.y >= -tol && st.y <= 1.0 + tol {
                     1.0 / self.area
                 } else {

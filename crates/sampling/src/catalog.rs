@@ -54,6 +54,30 @@ pub enum DirectionWarpSpec {
         /// Its radius.
         radius: f64,
     },
+    /// Area sampling of a triangle, seen from the origin (density converted
+    /// to solid angle).
+    TriangleArea {
+        /// The vertices.
+        vertices: [DVec3; 3],
+    },
+    /// Area sampling of a disk, seen from the origin.
+    DiskArea {
+        /// The disk's center.
+        center: DVec3,
+        /// Its normal (any length).
+        normal: DVec3,
+        /// Its radius.
+        radius: f64,
+    },
+    /// Area sampling of a parallelogram, seen from the origin.
+    ParallelogramArea {
+        /// One corner.
+        corner: DVec3,
+        /// First edge from the corner.
+        edge0: DVec3,
+        /// Second edge from the corner.
+        edge1: DVec3,
+    },
 }
 
 /// The cap of directions that contains a warp's support, used to bin
@@ -86,6 +110,9 @@ impl DirectionWarpSpec {
             DirectionWarpSpec::UniformSphere => "uniform-sphere",
             DirectionWarpSpec::UniformCone { .. } => "uniform-cone",
             DirectionWarpSpec::SphereLight { .. } => "sphere-light",
+            DirectionWarpSpec::TriangleArea { .. } => "triangle-area",
+            DirectionWarpSpec::DiskArea { .. } => "disk-area",
+            DirectionWarpSpec::ParallelogramArea { .. } => "parallelogram-area",
         }
     }
 
@@ -119,8 +146,55 @@ impl DirectionWarpSpec {
                     one_minus_cos: s2 / (1.0 + cos),
                 })
             }
+            DirectionWarpSpec::TriangleArea { vertices } => cap_of_points(vertices),
+            DirectionWarpSpec::ParallelogramArea {
+                corner,
+                edge0,
+                edge1,
+            } => cap_of_points(&[
+                *corner,
+                *corner + *edge0,
+                *corner + *edge0 + *edge1,
+                *corner + *edge1,
+            ]),
+            DirectionWarpSpec::DiskArea {
+                center,
+                normal,
+                radius,
+            } => {
+                let (x, y) = normal.normalize().any_orthonormal_pair();
+                let rim: Vec<DVec3> = (0..256)
+                    .map(|k| {
+                        let phi = std::f64::consts::TAU * k as f64 / 256.0;
+                        *center + (x * phi.cos() + y * phi.sin()) * *radius
+                    })
+                    .collect();
+                cap_of_points(&rim)
+            }
         }
     }
+}
+
+/// A cap about the normalised mean direction of `points` (seen from the
+/// origin) that contains them all, widened by 2 % in 1 − cos so that a
+/// boundary sampled between the points (a disk's rim) stays inside; `None`
+/// when that cap would exceed a hemisphere (bin over the sphere instead).
+fn cap_of_points(points: &[DVec3]) -> Option<BoundingCap> {
+    let axis = points
+        .iter()
+        .map(|p| p.normalize())
+        .sum::<DVec3>()
+        .normalize();
+    let frame = crate::f64::Frame::from_normal(axis);
+    let h = points
+        .iter()
+        .map(|p| crate::f64::one_minus_cos_theta(frame.to_local(p.normalize())))
+        .fold(0.0, f64::max);
+    let h = h * 1.02;
+    (h < 1.0).then_some(BoundingCap {
+        axis,
+        one_minus_cos: h,
+    })
 }
 
 macro_rules! catalog_impl {
@@ -153,6 +227,41 @@ macro_rules! catalog_impl {
             UniformSphere,
             UniformCone(UniformCone),
             SphereLight(SphereSolidAngle),
+            TriangleArea(UniformTriangle),
+            DiskArea(UniformDiskArea, V3, V3),
+            ParallelogramArea(UniformParallelogram),
+        }
+
+        /// The point where the ray from the origin along `w` meets the plane
+        /// through `on_plane` with normal `normal`, if in front.
+        #[inline]
+        fn hit_plane(w: V3, on_plane: V3, normal: V3) -> Option<V3> {
+            let denom = normal.dot(w);
+            let t = normal.dot(on_plane) / denom;
+            (t > 0.0 && t.is_finite()).then(|| w * t)
+        }
+
+        /// Direction and solid-angle density of an area sample seen from
+        /// the origin.
+        #[inline]
+        fn seen_from_origin(s: PointSample) -> (V3, Real) {
+            let w = s.point.normalize();
+            (
+                w,
+                pdf_area_to_solid_angle(s.pdf_area, V3::ZERO, s.point, s.normal),
+            )
+        }
+
+        /// Errors when the origin lies in the plane of an area light (it
+        /// would be seen edge-on, with no solid angle).
+        fn not_edge_on(normal: V3, on_plane: V3) -> Result<(), SamplingError> {
+            if normal.dot(on_plane) == 0.0 {
+                Err(SamplingError::Degenerate {
+                    what: "the origin lies in the light's plane (seen edge-on)",
+                })
+            } else {
+                Ok(())
+            }
         }
 
         pub(crate) fn build(
@@ -173,6 +282,39 @@ macro_rules! catalog_impl {
                     narrow3(*center),
                     *radius as Real,
                 )?),
+                S::TriangleArea { vertices } => {
+                    let tri = UniformTriangle::new(
+                        narrow3(vertices[0]),
+                        narrow3(vertices[1]),
+                        narrow3(vertices[2]),
+                    )?;
+                    not_edge_on(tri.normal(), narrow3(vertices[0]))?;
+                    Built::TriangleArea(tri)
+                }
+                S::DiskArea {
+                    center,
+                    normal,
+                    radius,
+                } => {
+                    let disk =
+                        UniformDiskArea::new(narrow3(*center), narrow3(*normal), *radius as Real)?;
+                    let n = narrow3(*normal).normalize();
+                    not_edge_on(n, narrow3(*center))?;
+                    Built::DiskArea(disk, narrow3(*center), n)
+                }
+                S::ParallelogramArea {
+                    corner,
+                    edge0,
+                    edge1,
+                } => {
+                    let par = UniformParallelogram::new(
+                        narrow3(*corner),
+                        narrow3(*edge0),
+                        narrow3(*edge1),
+                    )?;
+                    not_edge_on(narrow3(edge0.cross(*edge1)), narrow3(*corner))?;
+                    Built::ParallelogramArea(par)
+                }
             };
             Ok(Box::new(built))
         }
@@ -201,6 +343,9 @@ macro_rules! catalog_impl {
                         let l = s.sample(u);
                         (l.direction, l.pdf)
                     }
+                    Built::TriangleArea(a) => seen_from_origin(a.sample(u)),
+                    Built::DiskArea(a, _, _) => seen_from_origin(a.sample(u)),
+                    Built::ParallelogramArea(a) => seen_from_origin(a.sample(u)),
                 };
                 crate::f64::DirectionSample {
                     direction: wide3(direction),
@@ -216,6 +361,18 @@ macro_rules! catalog_impl {
                     Built::UniformSphere => pdf_uniform_sphere(w),
                     Built::UniformCone(c) => c.pdf(w),
                     Built::SphereLight(s) => s.pdf(w),
+                    Built::TriangleArea(a) => match hit_plane(w, a.vertex0(), a.normal()) {
+                        Some(p) => pdf_area_to_solid_angle(a.pdf(p), V3::ZERO, p, a.normal()),
+                        None => 0.0,
+                    },
+                    Built::DiskArea(a, c, n) => match hit_plane(w, *c, *n) {
+                        Some(p) => pdf_area_to_solid_angle(a.pdf(p), V3::ZERO, p, *n),
+                        None => 0.0,
+                    },
+                    Built::ParallelogramArea(a) => match hit_plane(w, a.corner(), a.normal()) {
+                        Some(p) => pdf_area_to_solid_angle(a.pdf(p), V3::ZERO, p, a.normal()),
+                        None => 0.0,
+                    },
                 }) as f64
             }
 
@@ -227,6 +384,13 @@ macro_rules! catalog_impl {
                     Built::UniformSphere => invert_uniform_sphere(w),
                     Built::UniformCone(c) => c.invert(w),
                     Built::SphereLight(s) => s.invert(w),
+                    Built::TriangleArea(a) => {
+                        a.invert(hit_plane(w, a.vertex0(), a.normal()).unwrap_or(V3::ZERO))
+                    }
+                    Built::DiskArea(a, c, n) => a.invert(hit_plane(w, *c, *n).unwrap_or(*c)),
+                    Built::ParallelogramArea(a) => {
+                        a.invert(hit_plane(w, a.corner(), a.normal()).unwrap_or(V3::ZERO))
+                    }
                 })
             }
         }

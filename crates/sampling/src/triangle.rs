@@ -48,6 +48,12 @@ macro_rules! triangle_impl {
                 self.area
             }
 
+            /// The first vertex.
+            #[inline]
+            pub fn vertex0(&self) -> V3 {
+                self.v0
+            }
+
             /// The triangle's unit normal (right-hand rule).
             #[inline]
             pub fn normal(&self) -> V3 {
@@ -92,11 +98,14 @@ macro_rules! triangle_impl {
             }
 
             /// Density per m² of the point `p` (on the triangle's plane):
-            /// 1/A inside (barycentrics ≥ −a few ulps), 0 outside.
+            /// 1/A inside, 0 outside. Barycentrics down to
+            /// −32ε·(1 + (|p|∞ + |v0|∞)/√A), the rounding of a point
+            /// recovered by intersecting a ray, count as inside.
             #[inline]
             pub fn pdf(&self, p: V3) -> Real {
                 let b = self.barycentrics(p);
-                let tol = -16.0 * Real::EPSILON;
+                let scale = p.abs().max_element() + self.v0.abs().max_element();
+                let tol = -32.0 * Real::EPSILON * (1.0 + scale / self.area.sqrt());
                 if b.x >= tol && b.y >= tol && b.z >= tol {
                     1.0 / self.area
                 } else {
