@@ -136,3 +136,8 @@ pub fn edge_values() -> Vec<f64> {
         1.0,
     ]
 }
+
+/// The README's Rust example, run as a doc test.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+pub struct ReadmeDoctests;
