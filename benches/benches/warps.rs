@@ -60,18 +60,6 @@ fn warps(c: &mut Criterion) {
     bench_warp!(g, "cosine hemisphere f64", next_u64x2, DVec3::ZERO, |u| {
         s64::sample_cosine_hemisphere(u)
     });
-    g.bench_function("cosine hemisphere batch f32", |b| {
-        let mut r = rng();
-        let mut us = vec![glam::Vec2::ZERO; BATCH as usize];
-        let mut out = vec![Vec3::ZERO; BATCH as usize];
-        b.iter(|| {
-            for u in us.iter_mut() {
-                *u = next_u32x2(&mut r);
-            }
-            s32::sample_cosine_hemisphere_batch(&us, &mut out);
-            black_box(&out);
-        })
-    });
     bench_warp!(g, "uniform sphere f32", next_u32x2, Vec3::ZERO, |u| {
         s32::sample_uniform_sphere(u)
     });
@@ -109,6 +97,81 @@ fn warps(c: &mut Criterion) {
     g.finish();
 }
 
+macro_rules! bench_batch {
+    ($group:expr, $name:expr, $next:ident, $u0:expr, $w0:expr, |$us:ident, $out:ident| $call:expr) => {
+        $group.bench_function($name, |b| {
+            let mut r = rng();
+            let mut $us = vec![$u0; BATCH as usize];
+            let mut $out = vec![$w0; BATCH as usize];
+            b.iter(|| {
+                for u in $us.iter_mut() {
+                    *u = $next(&mut r);
+                }
+                $call;
+                black_box(&$out);
+            })
+        });
+    };
+}
+
+/// The slice forms: the RNG fills a buffer, then the warp runs over it.
+fn batches(c: &mut Criterion) {
+    let mut g = c.benchmark_group("batch");
+    g.throughput(Throughput::Elements(BATCH));
+    let (u32z, u64z) = (glam::Vec2::ZERO, glam::DVec2::ZERO);
+    bench_batch!(
+        g,
+        "cosine hemisphere f32",
+        next_u32x2,
+        u32z,
+        Vec3::ZERO,
+        |us, out| { s32::sample_cosine_hemisphere_batch(&us, &mut out) }
+    );
+    bench_batch!(
+        g,
+        "cosine hemisphere f64",
+        next_u64x2,
+        u64z,
+        DVec3::ZERO,
+        |us, out| { s64::sample_cosine_hemisphere_batch(&us, &mut out) }
+    );
+    bench_batch!(
+        g,
+        "uniform hemisphere f32",
+        next_u32x2,
+        u32z,
+        Vec3::ZERO,
+        |us, out| { s32::sample_uniform_hemisphere_batch(&us, &mut out) }
+    );
+    bench_batch!(
+        g,
+        "uniform sphere f32",
+        next_u32x2,
+        u32z,
+        Vec3::ZERO,
+        |us, out| { s32::sample_uniform_sphere_batch(&us, &mut out) }
+    );
+    let cone32 = s32::UniformCone::from_theta_max(0.3).unwrap();
+    let cone64 = s64::UniformCone::from_theta_max(0.3).unwrap();
+    bench_batch!(
+        g,
+        "uniform cone f32",
+        next_u32x2,
+        u32z,
+        Vec3::ZERO,
+        |us, out| { cone32.sample_batch(&us, &mut out) }
+    );
+    bench_batch!(
+        g,
+        "uniform cone f64",
+        next_u64x2,
+        u64z,
+        DVec3::ZERO,
+        |us, out| { cone64.sample_batch(&us, &mut out) }
+    );
+    g.finish();
+}
+
 // criterion_group! generates an undocumented pub fn.
 #[allow(missing_docs)]
 mod group {
@@ -116,7 +179,7 @@ mod group {
     criterion_group! {
         name = benches;
         config = config();
-        targets = warps
+        targets = warps, batches
     }
 }
 criterion_main!(group::benches);

@@ -121,6 +121,16 @@ macro_rules! cone_impl {
                 direction_from(sin_theta, cos_theta, u.y)
             }
 
+            /// [`UniformCone::sample`] over a slice: `out[i]` for `u[i]`;
+            /// independent branch-free iterations that the compiler can
+            /// overlap and vectorise.
+            #[inline]
+            pub fn sample_batch(&self, u: &[V2], out: &mut [V3]) {
+                for (o, &ui) in out.iter_mut().zip(u) {
+                    *o = self.sample(ui);
+                }
+            }
+
             /// The density 1/(2πh) per steradian of a unit direction `w`
             /// inside the cap, 0 outside. Directions within a few ulps
             /// outside the rim count as inside, so a rim sample rounded

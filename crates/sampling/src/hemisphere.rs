@@ -16,6 +16,15 @@ macro_rules! hemisphere_impl {
             direction_from(r, z, u.y)
         }
 
+        /// [`sample_uniform_hemisphere`] over a slice (see
+        /// [`sample_cosine_hemisphere_batch`] for why batches are faster).
+        #[inline]
+        pub fn sample_uniform_hemisphere_batch(u: &[V2], out: &mut [V3]) {
+            for (o, &ui) in out.iter_mut().zip(u) {
+                *o = sample_uniform_hemisphere(ui);
+            }
+        }
+
         /// The density of [`sample_uniform_hemisphere`]: 1/(2π) per
         /// steradian for w_z ≥ 0, else 0.
         #[inline]

@@ -13,6 +13,14 @@ macro_rules! sphere_impl {
             direction_from(r, z, u.y)
         }
 
+        /// [`sample_uniform_sphere`] over a slice: `out[i]` for `u[i]`.
+        #[inline]
+        pub fn sample_uniform_sphere_batch(u: &[V2], out: &mut [V3]) {
+            for (o, &ui) in out.iter_mut().zip(u) {
+                *o = sample_uniform_sphere(ui);
+            }
+        }
+
         /// The density of [`sample_uniform_sphere`]: 1/(4π) per steradian
         /// everywhere.
         #[inline]
