@@ -28,10 +28,12 @@ pub(crate) mod precision;
 pub mod cone;
 pub mod error;
 pub mod frame;
+pub mod sequence;
 pub mod spherical;
 pub mod trig;
 
 pub use error::SamplingError;
+pub use sequence::{Independent, SampleSequence, Scramble, Sobol, SobolLayout, Stratified};
 
 /// Every f64 warp and helper (`DVec2`, `DVec3`).
 pub mod f64 {
