@@ -10,7 +10,7 @@
 //! | type | what | follows |
 //! |------|------|---------|
 //! | [`Independent`] | i.i.d. uniform numbers from PCG32, one stream per sample index | O'Neill 2014 |
-//! | [`Stratified`] | jittered (correlated multi-jittered) strata for a known sample count | Kensler 2013; pbrt-v4 §8.5 |
+//! | [`Stratified`] | jittered, multi-jittered (Latin hypercube) strata for a known sample count | Chiu, Shirley & Wang 1994; Kensler 2013; pbrt-v4 §8.5 |
 //! | [`Sobol`] | Owen-scrambled Sobol (0,2)-sequence, 256 dimensions | Sobol 1967; Joe & Kuo 2008; Owen 1995; Laine & Karras 2011; Burley 2020 |
 //!
 //! Dimensions are consumed in order: [`next_1d`](SampleSequence::next_1d)
