@@ -35,11 +35,13 @@ pub mod hemisphere;
 pub mod light_sample;
 pub mod sphere;
 pub mod sphere_light;
+pub mod sequence;
 pub mod spherical;
 pub mod triangle;
 pub mod trig;
 
 pub use error::SamplingError;
+pub use sequence::{Independent, SampleSequence, Scramble, Sobol, SobolLayout, Stratified};
 
 /// Every f64 warp and helper (`DVec2`, `DVec3`).
 pub mod f64 {

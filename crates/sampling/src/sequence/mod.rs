@@ -1,0 +1,172 @@
+//! Sample sequences: where the canonical `u ∈ [0, 1)^d` fed to the warps
+//! comes from.
+//!
+//! Every sequence implements [`SampleSequence`]: position it at a sample
+//! index with [`start_sample`](SampleSequence::start_sample) (random access,
+//! so a chunk of samples computed on any thread is the same, to the bit,
+//! whatever the chunking), then draw that sample's coordinates one or two
+//! dimensions at a time. Every sequence is fully determined by its seed.
+//!
+//! | type | what | follows |
+//! |------|------|---------|
+//! | [`Independent`] | i.i.d. uniform numbers from PCG32, one stream per sample index | O'Neill 2014 |
+//! | [`Stratified`] | jittered, multi-jittered (Latin hypercube) strata for a known sample count | Chiu, Shirley & Wang 1994; Kensler 2013; pbrt-v4 §8.5 |
+//! | [`Sobol`] | Owen-scrambled Sobol (0,2)-sequence, 256 dimensions | Sobol 1967; Joe & Kuo 2008; Owen 1995; Laine & Karras 2011; Burley 2020 |
+//!
+//! Dimensions are consumed in order: [`next_1d`](SampleSequence::next_1d)
+//! takes one, [`next_2d`](SampleSequence::next_2d) and
+//! [`next_2d_f32`](SampleSequence::next_2d_f32) take two (the pair `(d, d+1)`).
+//!
+//! ```
+//! use lambert_sampling::sequence::{SampleSequence, Sobol};
+//! use lambert_sampling::f64::UniformCone;
+//! // Mean of cos θ over a cone of half-angle 60° (uniform in solid angle):
+//! // (1 + cos θmax) / 2 = 3/4.
+//! let cone = UniformCone::from_cos_theta_max(0.5).unwrap();
+//! let mut seq = Sobol::new(7);
+//! let mut sum_cos = 0.0_f64;
+//! for i in 0..1024 {
+//!     seq.start_sample(i);
+//!     sum_cos += cone.sample(seq.next_2d()).z;
+//! }
+//! assert!((sum_cos / 1024.0 - 0.75).abs() < 1e-3);
+//! ```
+
+pub mod independent;
+pub mod sobol;
+mod sobol_table;
+pub mod stratified;
+
+pub use independent::Independent;
+pub use sobol::{Scramble, Sobol, SobolLayout};
+pub use stratified::Stratified;
+
+use glam::{DVec2, Vec2};
+
+/// A deterministic, randomly accessible source of points in `[0, 1)^d`.
+///
+/// A sequence is a cursor `(sample index, dimension)`. After
+/// [`start_sample(i)`](SampleSequence::start_sample) the cursor is at
+/// dimension 0 of sample `i`; each `next_*` call returns the next one or two
+/// coordinates of that sample and advances the dimension. Reading sample `i`
+/// gives the same numbers whatever was read before, so samples can be
+/// computed in any order, on any thread.
+///
+/// Values are always in `[0, 1)`: never negative, never 1, never NaN, in both
+/// precisions. The f32 values are built from 24 bits (`k · 2^-24`,
+/// `k < 2^24`), so they never round up to 1.
+pub trait SampleSequence: Clone + Send + Sync {
+    /// Moves the cursor to dimension 0 of sample `index`.
+    fn start_sample(&mut self, index: u64);
+
+    /// The next coordinate, in `[0, 1)`.
+    fn next_1d(&mut self) -> f64;
+
+    /// The next two coordinates, in `[0, 1)²`: the `u` of a 2-D warp.
+    fn next_2d(&mut self) -> DVec2;
+
+    /// The next two coordinates in f32, in `[0, 1)²`, each `k · 2^-24` with
+    /// `k < 2^24`. Same dimensions, same stratification as
+    /// [`next_2d`](SampleSequence::next_2d).
+    fn next_2d_f32(&mut self) -> Vec2;
+
+    /// The next coordinate in f32, `k · 2^-24` with `k < 2^24`.
+    ///
+    /// The default truncates [`next_1d`](SampleSequence::next_1d) to 24 bits.
+    fn next_1d_f32(&mut self) -> f32 {
+        f64_to_f32_unit(self.next_1d())
+    }
+}
+
+/// `2^-32`.
+const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
+/// `2^-53`.
+const TWO_POW_M53: f64 = 1.0 / 9_007_199_254_740_992.0;
+/// `2^-24`.
+const TWO_POW_M24_F32: f32 = 1.0 / 16_777_216.0;
+/// The largest f64 below 1.
+use crate::precision::f64::ONE_MINUS_EPSILON;
+
+/// `x · 2^-32`: exact, in `[0, 1 − 2^-32]`.
+#[inline]
+pub(crate) fn u32_to_f64(x: u32) -> f64 {
+    f64::from(x) * TWO_POW_M32
+}
+
+/// The top 53 bits of `x` times `2^-53`: exact, in `[0, 1 − 2^-53]`.
+#[inline]
+pub(crate) fn u64_to_f64(x: u64) -> f64 {
+    (x >> 11) as f64 * TWO_POW_M53
+}
+
+/// The top 24 bits of `x` times `2^-24`: exact, in `[0, 1 − 2^-24]`.
+#[inline]
+pub(crate) fn u32_to_f32(x: u32) -> f32 {
+    (x >> 8) as f32 * TWO_POW_M24_F32
+}
+
+/// Truncates `x ∈ [0, 1)` to 24 bits, `⌊x · 2^24⌋ · 2^-24`: exact, and never 1
+/// (rounding to nearest, `x as f32`, gives 1 for `x > 1 − 2^-25`).
+#[inline]
+pub(crate) fn f64_to_f32_unit(x: f64) -> f32 {
+    let k = (x * 16_777_216.0) as u32; // saturating; x < 1 gives k < 2^24
+    (k as f32 * TWO_POW_M24_F32).min(crate::precision::f32::ONE_MINUS_EPSILON)
+}
+
+/// Clamps a computed value to `[0, 1)` (for sums that may round up to 1).
+#[inline]
+pub(crate) fn clamp_unit(x: f64) -> f64 {
+    x.clamp(0.0, ONE_MINUS_EPSILON)
+}
+
+/// The splitmix64 finaliser (Steele, Lea & Flood 2014; constants of
+/// Stafford's "Mix13"): a bijection of `u64` with full avalanche.
+#[inline]
+pub(crate) fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Hashes two words: `mix64(a + γ·mix64(b + γ))`, γ the golden-ratio increment
+/// of splitmix64. Distinct `(a, b)` give unrelated outputs.
+#[inline]
+pub(crate) fn hash2(a: u64, b: u64) -> u64 {
+    const GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
+    mix64(a.wrapping_add(GAMMA.wrapping_mul(mix64(b.wrapping_add(GAMMA)) | 1)))
+}
+
+/// Hashes three words.
+#[inline]
+pub(crate) fn hash3(a: u64, b: u64, c: u64) -> u64 {
+    hash2(hash2(a, b), c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn conversions_stay_below_one_on_all_ones() {
+        assert!(u32_to_f64(u32::MAX) < 1.0);
+        assert!(u64_to_f64(u64::MAX) < 1.0);
+        assert!(u32_to_f32(u32::MAX) < 1.0);
+        assert_eq!(u32_to_f32(u32::MAX), 1.0 - f32::EPSILON / 2.0);
+        assert!(f64_to_f32_unit(ONE_MINUS_EPSILON) < 1.0);
+        assert!(f64_to_f32_unit(1.0) < 1.0);
+        // Plain rounding would give 1.0 here: the reason for truncation.
+        assert_eq!(ONE_MINUS_EPSILON as f32, 1.0);
+        assert_eq!(clamp_unit(1.0), ONE_MINUS_EPSILON);
+        assert_eq!(u32_to_f64(0), 0.0);
+        assert_eq!(u32_to_f32(0), 0.0);
+        assert_eq!(f64_to_f32_unit(0.0), 0.0);
+        assert_eq!(u32_to_f64(0x8000_0000), 0.5);
+    }
+
+    #[test]
+    fn hashes_differ_on_swapped_arguments() {
+        assert_ne!(hash2(1, 2), hash2(2, 1));
+        assert_ne!(hash3(0, 0, 1), hash3(0, 1, 0));
+        assert_ne!(mix64(0), mix64(1));
+    }
+}
