@@ -5,10 +5,9 @@
 use std::io::{self, BufWriter, Write};
 
 use clap::{Args, Subcommand, ValueEnum};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use lambert_sampling::catalog::{DirectionWarpSpec, Precision};
-use rand::{Rng, SeedableRng};
-use rand_pcg::Pcg64Mcg;
+use lambert_sampling::{Independent, SampleSequence};
 
 use crate::parse;
 
@@ -111,7 +110,9 @@ pub fn run(warp: &WarpCommand, options: &SampleOptions) -> Result<(), String> {
         .map_err(|e| format!("{}: {e}", spec.name()))?;
     let stdout = io::stdout();
     let mut out = BufWriter::with_capacity(1 << 16, stdout.lock());
-    let mut rng = Pcg64Mcg::seed_from_u64(options.seed);
+    // Sample i reads its own PCG stream (random access by index), so the
+    // output for a seed never depends on how it is consumed.
+    let mut sequence = Independent::new(options.seed);
     let write = |out: &mut BufWriter<_>, w: DVec3| -> io::Result<()> {
         match options.format {
             Format::F32le => {
@@ -127,8 +128,13 @@ pub fn run(warp: &WarpCommand, options: &SampleOptions) -> Result<(), String> {
             }
         }
     };
-    for _ in 0..options.n {
-        let u = DVec2::new(rng.random::<f64>(), rng.random::<f64>());
+    for i in 0..options.n {
+        sequence.start_sample(i);
+        // The f32 path gets 24-bit uniforms, exactly representable in f32.
+        let u = match precision {
+            Precision::F32 => sequence.next_2d_f32().as_dvec2(),
+            Precision::F64 => sequence.next_2d(),
+        };
         let w = sampler.sample(u).direction;
         if let Err(e) = write(&mut out, w) {
             return broken_pipe_is_fine(e);
