@@ -3,3 +3,5 @@
 //! Monte Carlo estimation of irradiance E = ∫ L cos θ dω, and the tools that
 //! check estimators and samplers: the chi-square goodness-of-fit test for
 //! direction samplers.
+
+pub mod goodness_of_fit;
