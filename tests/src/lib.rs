@@ -2,7 +2,9 @@
 //! This library holds what they share: the catalogue of hard cases.
 
 use glam::DVec3;
-use lambert_sampling::catalog::DirectionWarpSpec;
+use lambert_estimator::goodness_of_fit::{Binning, ChiSquareOutcome, ChiSquareTest};
+use lambert_sampling::catalog::{DirectionWarp, DirectionWarpSpec, Precision};
+use lambert_sampling::{Independent, SampleSequence};
 
 /// A named warp configuration that the suites exercise.
 #[derive(Clone, Debug)]
@@ -141,3 +143,53 @@ pub fn edge_values() -> Vec<f64> {
 #[cfg(doctest)]
 #[doc = include_str!("../../README.md")]
 pub struct ReadmeDoctests;
+
+/// Samples per chi-square test in the warp suites (and in their negative
+/// controls, which must be rejected at this same count).
+pub const CHI_SQUARE_SAMPLES: u64 = 400_000;
+
+/// The binning the suites use for a warp: 16 × 16 cells of equal solid angle
+/// inside its bounding cap, or 20 × 40 over the sphere. Expected counts are
+/// then ≳ 1500 per occupied cell, far above the pooling threshold of 5.
+pub fn binning_for(spec: &DirectionWarpSpec) -> Binning {
+    match spec.bounding_cap() {
+        Some(cap) => Binning::Cap {
+            axis: cap.axis,
+            one_minus_cos_max: cap.one_minus_cos,
+            theta_bins: 16,
+            phi_bins: 16,
+        },
+        None => Binning::Sphere {
+            theta_bins: 20,
+            phi_bins: 40,
+        },
+    }
+}
+
+/// Draws `samples` directions from `warp` (sample i from the independent
+/// sequence's stream i for `seed`; 24-bit uniforms for f32) and runs the
+/// chi-square test against `pdf` at level `alpha`.
+pub fn chi_square(
+    warp: &dyn DirectionWarp,
+    precision: Precision,
+    binning: Binning,
+    pdf: impl FnMut(DVec3) -> f64,
+    samples: u64,
+    seed: u64,
+    alpha: f64,
+) -> ChiSquareOutcome {
+    let mut sequence = Independent::new(seed);
+    let sample = |i: u64| {
+        sequence.start_sample(i);
+        let u = match precision {
+            Precision::F32 => sequence.next_2d_f32().as_dvec2(),
+            Precision::F64 => sequence.next_2d(),
+        };
+        warp.sample(u).direction
+    };
+    ChiSquareTest::new(binning)
+        .samples(samples)
+        .significance(alpha)
+        .run(sample, pdf)
+        .expect("the suite's chi-square configuration is valid")
+}

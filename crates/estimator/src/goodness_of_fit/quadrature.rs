@@ -176,7 +176,7 @@ pub fn integrate_rectangle<F: FnMut(f64, f64) -> f64>(
 /// current estimate of the integral (the chi-square test asks for an error
 /// in a cell's expected count of at most 1e-3·√E, E itself the integral).
 pub(crate) fn integrate_adaptive<F, T>(
-    mut f: F,
+    f: F,
     x: (f64, f64),
     y: (f64, f64),
     tolerance: T,
@@ -186,7 +186,23 @@ where
     F: FnMut(f64, f64) -> f64,
     T: Fn(f64) -> f64,
 {
-    let k = INITIAL_SPLIT;
+    integrate_adaptive_from(f, x, y, tolerance, max_splits, INITIAL_SPLIT)
+}
+
+/// [`integrate_adaptive`] starting from a `k` × `k` split instead of
+/// `INITIAL_SPLIT`², for cells where a coarse start missed a small feature.
+pub(crate) fn integrate_adaptive_from<F, T>(
+    mut f: F,
+    x: (f64, f64),
+    y: (f64, f64),
+    tolerance: T,
+    max_splits: usize,
+    k: usize,
+) -> Integral
+where
+    F: FnMut(f64, f64) -> f64,
+    T: Fn(f64) -> f64,
+{
     let mut heap = BinaryHeap::with_capacity(k * k);
     let (dx, dy) = ((x.1 - x.0) / k as f64, (y.1 - y.0) / k as f64);
     for i in 0..k {
