@@ -26,9 +26,11 @@
 pub(crate) mod precision;
 
 pub mod cone;
+pub mod direction_sample;
 pub mod error;
 pub mod frame;
 pub mod spherical;
+pub mod spherical_triangle;
 pub mod trig;
 
 pub use error::SamplingError;
@@ -36,18 +38,22 @@ pub use error::SamplingError;
 /// Every f64 warp and helper (`DVec2`, `DVec3`).
 pub mod f64 {
     pub use crate::cone::f64::*;
+    pub use crate::direction_sample::f64::*;
     pub use crate::error::SamplingError;
     pub use crate::frame::f64::*;
     pub use crate::spherical::f64::*;
+    pub use crate::spherical_triangle::f64::*;
     pub use crate::trig::f64::*;
 }
 
 /// Every f32 warp and helper (`Vec2`, `Vec3`), for path tracers.
 pub mod f32 {
     pub use crate::cone::f32::*;
+    pub use crate::direction_sample::f32::*;
     pub use crate::error::SamplingError;
     pub use crate::frame::f32::*;
     pub use crate::spherical::f32::*;
+    pub use crate::spherical_triangle::f32::*;
     pub use crate::trig::f32::*;
 }
 

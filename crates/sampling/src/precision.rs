@@ -19,6 +19,7 @@ pub(crate) mod f64 {
     /// π.
     pub const PI: Real = core::f64::consts::PI;
     /// The largest value below 1.
+    #[allow(dead_code)] // used by tests; kept for warps that clamp u below 1
     pub const ONE_MINUS_EPSILON: Real = 1.0 - f64::EPSILON / 2.0;
     /// Taylor coefficients of sin x / x in x², to x¹⁶ (see `trig`).
     pub const SIN_TAYLOR: [Real; 9] = [
@@ -57,6 +58,7 @@ pub(crate) mod f32 {
     /// π.
     pub const PI: Real = core::f32::consts::PI;
     /// The largest value below 1.
+    #[allow(dead_code)] // used by tests; kept for warps that clamp u below 1
     pub const ONE_MINUS_EPSILON: Real = 1.0 - f32::EPSILON / 2.0;
     /// Taylor coefficients of sin x / x in x², to x⁸ (see `trig`).
     pub const SIN_TAYLOR: [Real; 5] = [1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0];
