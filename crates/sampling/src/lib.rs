@@ -30,6 +30,7 @@ pub mod direction_sample;
 pub mod error;
 pub mod frame;
 pub mod spherical;
+pub mod spherical_rectangle;
 pub mod spherical_triangle;
 pub mod trig;
 
@@ -42,6 +43,7 @@ pub mod f64 {
     pub use crate::error::SamplingError;
     pub use crate::frame::f64::*;
     pub use crate::spherical::f64::*;
+    pub use crate::spherical_rectangle::f64::*;
     pub use crate::spherical_triangle::f64::*;
     pub use crate::trig::f64::*;
 }
@@ -53,6 +55,7 @@ pub mod f32 {
     pub use crate::error::SamplingError;
     pub use crate::frame::f32::*;
     pub use crate::spherical::f32::*;
+    pub use crate::spherical_rectangle::f32::*;
     pub use crate::spherical_triangle::f32::*;
     pub use crate::trig::f32::*;
 }
