@@ -528,6 +528,43 @@ mod tests {
         }
     }
 
+    #[test]
+    fn bad_input_is_a_clear_error() {
+        use super::f64::SphericalRectangle as R;
+        use crate::SamplingError;
+        let (o, x, y, z) = (DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z);
+        assert!(matches!(
+            R::new(o, -z, DVec3::new(f64::INFINITY, 0.0, 0.0), y),
+            Err(SamplingError::NotFinite { field: "edge0", .. })
+        ));
+        assert!(matches!(
+            R::new(o, -z, DVec3::ZERO, y),
+            Err(SamplingError::ZeroVector { field: "edge0" })
+        ));
+        assert!(matches!(
+            R::new(o, -z, x, DVec3::ZERO),
+            Err(SamplingError::ZeroVector { field: "edge1" })
+        ));
+        assert!(matches!(
+            R::new(o, -z, x, x + y),
+            Err(SamplingError::OutOfRange { .. })
+        ));
+        // p in the plane.
+        assert!(matches!(
+            R::new(o, x, x, y),
+            Err(SamplingError::Degenerate { .. })
+        ));
+        // Slightly non-perpendicular edges within the tolerance are accepted.
+        assert!(R::new(o, -z, x, y + 5e-5 * x).is_ok());
+        // The far side of the plane and either edge order: same solid angle.
+        let a = R::new(o, -z, x, y).unwrap();
+        let b = R::new(o, -z, y, x).unwrap();
+        let c = R::new(-2.0 * z, -z, x, y).unwrap();
+        assert!((a.solid_angle() - b.solid_angle()).abs() < 1e-15);
+        assert!((a.solid_angle() - c.solid_angle()).abs() < 1e-15);
+        assert_eq!(a.pdf(DVec3::new(f64::NAN, 0.0, 0.0)), 0.0);
+    }
+
     macro_rules! precision_tests {
         ($m:ident) => {
             mod $m {

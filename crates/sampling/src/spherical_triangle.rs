@@ -491,6 +491,38 @@ mod tests {
         }
     }
 
+    #[test]
+    fn bad_input_is_a_clear_error() {
+        use super::f64::SphericalTriangle as T;
+        use crate::SamplingError;
+        let (o, x, y) = (DVec3::ZERO, DVec3::X, DVec3::Y);
+        let z = -DVec3::Z;
+        assert!(matches!(
+            T::new(o, DVec3::new(f64::NAN, 0.0, -1.0), x + z, y + z),
+            Err(SamplingError::NotFinite { field: "v0", .. })
+        ));
+        // A vertex at p, collinear vertices, p in the triangle's plane.
+        assert!(matches!(
+            T::new(o, o, x + z, y + z),
+            Err(SamplingError::Degenerate { .. })
+        ));
+        assert!(matches!(
+            T::new(o, z, 2.0 * z, 3.0 * z),
+            Err(SamplingError::Degenerate { .. })
+        ));
+        assert!(matches!(
+            T::new(o, x, y, x + y),
+            Err(SamplingError::Degenerate { .. })
+        ));
+        // Both orientations give the same solid angle and support.
+        let a = T::new(o, z, x + z, y + z).unwrap();
+        let b = T::new(o, z, y + z, x + z).unwrap();
+        assert_eq!(a.solid_angle(), b.solid_angle());
+        let w = (DVec3::new(0.2, 0.2, 0.0) + z).normalize();
+        assert!(a.pdf(w) > 0.0 && b.pdf(w) > 0.0 && a.pdf(-w) == 0.0);
+        assert_eq!(a.pdf(DVec3::new(f64::NAN, 0.0, 0.0)), 0.0);
+    }
+
     macro_rules! precision_tests {
         ($m:ident) => {
             mod $m {
