@@ -28,6 +28,7 @@ pub(crate) mod precision;
 pub mod area;
 pub mod catalog;
 pub mod cone;
+pub mod direction_sample;
 pub mod disk;
 pub mod error;
 pub mod frame;
@@ -37,6 +38,8 @@ pub mod sequence;
 pub mod sphere;
 pub mod sphere_light;
 pub mod spherical;
+pub mod spherical_rectangle;
+pub mod spherical_triangle;
 pub mod triangle;
 pub mod trig;
 
@@ -47,6 +50,7 @@ pub use sequence::{Independent, SampleSequence, Scramble, Sobol, SobolLayout, St
 pub mod f64 {
     pub use crate::area::f64::*;
     pub use crate::cone::f64::*;
+    pub use crate::direction_sample::f64::*;
     pub use crate::disk::f64::*;
     pub use crate::error::SamplingError;
     pub use crate::frame::f64::*;
@@ -55,6 +59,8 @@ pub mod f64 {
     pub use crate::sphere::f64::*;
     pub use crate::sphere_light::f64::*;
     pub use crate::spherical::f64::*;
+    pub use crate::spherical_rectangle::f64::*;
+    pub use crate::spherical_triangle::f64::*;
     pub use crate::triangle::f64::*;
     pub use crate::trig::f64::*;
 }
@@ -63,6 +69,7 @@ pub mod f64 {
 pub mod f32 {
     pub use crate::area::f32::*;
     pub use crate::cone::f32::*;
+    pub use crate::direction_sample::f32::*;
     pub use crate::disk::f32::*;
     pub use crate::error::SamplingError;
     pub use crate::frame::f32::*;
@@ -71,6 +78,8 @@ pub mod f32 {
     pub use crate::sphere::f32::*;
     pub use crate::sphere_light::f32::*;
     pub use crate::spherical::f32::*;
+    pub use crate::spherical_rectangle::f32::*;
+    pub use crate::spherical_triangle::f32::*;
     pub use crate::triangle::f32::*;
     pub use crate::trig::f32::*;
 }

@@ -2,15 +2,6 @@
 
 macro_rules! light_sample_impl {
     () => {
-        /// A sampled direction with its density per steradian.
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        pub struct DirectionSample {
-            /// Unit direction.
-            pub direction: V3,
-            /// Density of `direction`, per steradian.
-            pub pdf: Real,
-        }
-
         /// A direction sampled toward a light, with what a shading loop needs
         /// next: the density per steradian, the point hit on the light, and
         /// its distance from the reference point.
