@@ -268,3 +268,48 @@ fn control_sample_in_zero_pdf_cell_fails_immediately() {
     assert!(!o.passed());
     assert!(o.table().contains("ZERO PDF"));
 }
+
+/// Partition mode: 16 equal cells of the unit square, sampled uniformly,
+/// pass; the same cells sampled with u₀ warped by u₀^0.98 (a 2 % skew) are
+/// rejected at the same count; probabilities that do not sum to 1 and a
+/// sample outside every cell are errors or immediate failures.
+#[test]
+fn partition_mode_passes_uniform_and_rejects_skew() {
+    use lambert_estimator::goodness_of_fit::ImmediateFailure;
+    use rand::{Rng, SeedableRng};
+    let probabilities = vec![1.0 / 16.0; 16];
+    let test = ChiSquareTest::new(Binning::Sphere {
+        theta_bins: 2,
+        phi_bins: 2,
+    })
+    .samples(1_000_000)
+    .significance(0.01);
+    let cell = |u0: f64, u1: f64| Some((4.0 * u0) as usize * 4 + (4.0 * u1) as usize);
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(11);
+    let good = test
+        .run_partition(&probabilities, |_| cell(rng.random(), rng.random()))
+        .unwrap();
+    assert!(good.passed(), "{good}");
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(11);
+    let skewed = test
+        .run_partition(&probabilities, |_| {
+            cell(rng.random::<f64>().powf(0.98), rng.random())
+        })
+        .unwrap();
+    assert!(!skewed.passed(), "{skewed}");
+    assert!(test.run_partition(&[0.5, 0.4], |_| Some(0)).is_err());
+    assert!(test.run_partition(&[0.5, f64::NAN], |_| Some(0)).is_err());
+    let stray = test
+        .run_partition(&[0.5, 0.5], |i| {
+            if i == 7 {
+                None
+            } else {
+                Some((i % 2) as usize)
+            }
+        })
+        .unwrap();
+    assert!(matches!(
+        stray.failure,
+        Some(ImmediateFailure::OutsidePartition { index: 7, count: 1 })
+    ));
+}

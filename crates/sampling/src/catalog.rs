@@ -54,6 +54,22 @@ pub enum DirectionWarpSpec {
         /// Its radius.
         radius: f64,
     },
+    /// Uniform sampling of the spherical triangle a planar triangle
+    /// subtends at the origin (Arvo 1995).
+    SphericalTriangle {
+        /// The vertices.
+        vertices: [DVec3; 3],
+    },
+    /// Uniform sampling of the spherical rectangle a rectangle subtends at
+    /// the origin (Ureña, Fajardo and King 2013).
+    SphericalRectangle {
+        /// One corner.
+        corner: DVec3,
+        /// First edge from the corner.
+        edge0: DVec3,
+        /// Second edge, perpendicular to the first.
+        edge1: DVec3,
+    },
     /// Area sampling of a triangle, seen from the origin (density converted
     /// to solid angle).
     TriangleArea {
@@ -110,6 +126,8 @@ impl DirectionWarpSpec {
             DirectionWarpSpec::UniformSphere => "uniform-sphere",
             DirectionWarpSpec::UniformCone { .. } => "uniform-cone",
             DirectionWarpSpec::SphereLight { .. } => "sphere-light",
+            DirectionWarpSpec::SphericalTriangle { .. } => "spherical-triangle",
+            DirectionWarpSpec::SphericalRectangle { .. } => "spherical-rectangle",
             DirectionWarpSpec::TriangleArea { .. } => "triangle-area",
             DirectionWarpSpec::DiskArea { .. } => "disk-area",
             DirectionWarpSpec::ParallelogramArea { .. } => "parallelogram-area",
@@ -146,8 +164,14 @@ impl DirectionWarpSpec {
                     one_minus_cos: s2 / (1.0 + cos),
                 })
             }
-            DirectionWarpSpec::TriangleArea { vertices } => cap_of_points(vertices),
+            DirectionWarpSpec::TriangleArea { vertices }
+            | DirectionWarpSpec::SphericalTriangle { vertices } => cap_of_points(vertices),
             DirectionWarpSpec::ParallelogramArea {
+                corner,
+                edge0,
+                edge1,
+            }
+            | DirectionWarpSpec::SphericalRectangle {
                 corner,
                 edge0,
                 edge1,
@@ -227,6 +251,8 @@ macro_rules! catalog_impl {
             UniformSphere,
             UniformCone(UniformCone),
             SphereLight(SphereSolidAngle),
+            SphericalTriangle(SphericalTriangle),
+            SphericalRectangle(SphericalRectangle),
             TriangleArea(UniformTriangle),
             DiskArea(UniformDiskArea, V3, V3),
             ParallelogramArea(UniformParallelogram),
@@ -281,6 +307,24 @@ macro_rules! catalog_impl {
                     V3::ZERO,
                     narrow3(*center),
                     *radius as Real,
+                )?),
+                S::SphericalTriangle { vertices } => {
+                    Built::SphericalTriangle(SphericalTriangle::new(
+                        V3::ZERO,
+                        narrow3(vertices[0]),
+                        narrow3(vertices[1]),
+                        narrow3(vertices[2]),
+                    )?)
+                }
+                S::SphericalRectangle {
+                    corner,
+                    edge0,
+                    edge1,
+                } => Built::SphericalRectangle(SphericalRectangle::new(
+                    V3::ZERO,
+                    narrow3(*corner),
+                    narrow3(*edge0),
+                    narrow3(*edge1),
                 )?),
                 S::TriangleArea { vertices } => {
                     let tri = UniformTriangle::new(
@@ -343,6 +387,14 @@ macro_rules! catalog_impl {
                         let l = s.sample(u);
                         (l.direction, l.pdf)
                     }
+                    Built::SphericalTriangle(s) => {
+                        let d = s.sample(u);
+                        (d.direction, d.pdf)
+                    }
+                    Built::SphericalRectangle(s) => {
+                        let d = s.sample(u);
+                        (d.direction, d.pdf)
+                    }
                     Built::TriangleArea(a) => seen_from_origin(a.sample(u)),
                     Built::DiskArea(a, _, _) => seen_from_origin(a.sample(u)),
                     Built::ParallelogramArea(a) => seen_from_origin(a.sample(u)),
@@ -361,6 +413,8 @@ macro_rules! catalog_impl {
                     Built::UniformSphere => pdf_uniform_sphere(w),
                     Built::UniformCone(c) => c.pdf(w),
                     Built::SphereLight(s) => s.pdf(w),
+                    Built::SphericalTriangle(s) => s.pdf(w),
+                    Built::SphericalRectangle(s) => s.pdf(w),
                     Built::TriangleArea(a) => match hit_plane(w, a.vertex0(), a.normal()) {
                         Some(p) => pdf_area_to_solid_angle(a.pdf(p), V3::ZERO, p, a.normal()),
                         None => 0.0,
@@ -384,6 +438,8 @@ macro_rules! catalog_impl {
                     Built::UniformSphere => invert_uniform_sphere(w),
                     Built::UniformCone(c) => c.invert(w),
                     Built::SphereLight(s) => s.invert(w),
+                    Built::SphericalTriangle(s) => s.invert(w),
+                    Built::SphericalRectangle(s) => s.invert(w),
                     Built::TriangleArea(a) => {
                         a.invert(hit_plane(w, a.vertex0(), a.normal()).unwrap_or(V3::ZERO))
                     }

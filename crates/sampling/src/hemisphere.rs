@@ -1,18 +1,19 @@
 //! Uniform and cosine-weighted hemispheres about +z.
 //!
-//! Uniform: p(ω) = 1/(2π) per steradian for cos θ ≥ 0, by z = u₀, φ = 2πu₁
-//! (pbrt-v4 §A.5.2). Cosine-weighted: p(ω) = cos θ/π per steradian, by
+//! Uniform: p(ω) = 1/(2π) per steradian for cos θ ≥ 0, by z = 1 − u₀,
+//! φ = 2πu₁ (pbrt-v4 §A.5.2 uses z = u₀; 1 − u₀ keeps u₀ ∈ [0, 1) off the
+//! horizon, so every sample from the half-open square has z > 0). Cosine-weighted: p(ω) = cos θ/π per steradian, by
 //! Malley's method, lifting a concentric-disk sample to the hemisphere
 //! (Shirley & Chiu 1997; pbrt-v4 §A.5.3), which keeps its low distortion.
 
 macro_rules! hemisphere_impl {
     () => {
         /// A direction uniform on the upper hemisphere (cos θ ≥ 0):
-        /// cos θ = u₀, sin θ = √((1 − u₀)(1 + u₀)), φ = 2πu₁.
+        /// cos θ = 1 − u₀, sin θ = √(u₀(2 − u₀)), φ = 2πu₁.
         #[inline]
         pub fn sample_uniform_hemisphere(u: V2) -> V3 {
-            let z = u.x;
-            let r = ((1.0 - z) * (1.0 + z)).max(0.0).sqrt();
+            let z = 1.0 - u.x;
+            let r = (u.x * (2.0 - u.x)).max(0.0).sqrt();
             direction_from(r, z, u.y)
         }
 
@@ -37,10 +38,10 @@ macro_rules! hemisphere_impl {
         }
 
         /// The u that [`sample_uniform_hemisphere`] maps to `w`:
-        /// u₀ = cos θ, u₁ = φ/2π.
+        /// u₀ = 1 − cos θ (cancellation-free), u₁ = φ/2π.
         #[inline]
         pub fn invert_uniform_hemisphere(w: V3) -> V2 {
-            V2::new(w.z.clamp(0.0, 1.0), azimuth_fraction(w))
+            V2::new(one_minus_cos_theta(w).clamp(0.0, 1.0), azimuth_fraction(w))
         }
 
         /// A direction with density cos θ/π per steradian (Malley's method):

@@ -66,9 +66,16 @@ macro_rules! sphere_light_impl {
                 // by up to ~16ε in angle (each frame axis and each dot product
                 // carries a few ulps), which changes 1 − cos θ at the rim by
                 // sin θmax · 16ε. Directions within that of the rim count as
-                // inside, so pdf(sample(u)) is the sampled density.
+                // inside, so pdf(sample(u)) is the sampled density. For an
+                // axis along ±z the frame is exact (Duff et al.'s basis is
+                // then (±1, 0, 0), (0, 1, 0)) and only the cone's own
+                // relative rounding remains; the rotation term is scaled by
+                // the axis's off-z components, which vanish there.
                 let h = cone.one_minus_cos_theta_max();
-                let inside_limit = h + 16.0 * Real::EPSILON * (sin_theta_max + h);
+                let n = axis / distance;
+                let tilt = n.x.abs() + n.y.abs();
+                let inside_limit = h * (1.0 + 8.0 * Real::EPSILON)
+                    + 16.0 * Real::EPSILON * tilt * (sin_theta_max + h);
                 Ok(SphereSolidAngle {
                     inside_limit,
                     frame: Frame::from_normal(axis / distance),

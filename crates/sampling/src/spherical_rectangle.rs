@@ -123,19 +123,6 @@ macro_rules! spherical_rectangle_impl {
             }
         }
 
-        /// A sample of a [`SphericalRectangle`] with the point it hits.
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        pub struct RectangleSample {
-            /// The unit direction from the reference point.
-            pub direction: V3,
-            /// Its density, 1/S per steradian.
-            pub pdf: Real,
-            /// The point on the rectangle along `direction`.
-            pub point: V3,
-            /// The distance from the reference point to `point`.
-            pub distance: Real,
-        }
-
         /// The uniform density over the directions that a rectangle subtends
         /// at a point: p(ω) = 1/S per steradian inside, 0 outside (Ureña,
         /// Fajardo & King 2013, rewritten without cancellation and without
@@ -346,11 +333,11 @@ macro_rules! spherical_rectangle_impl {
             /// the rectangle (`corner + (x − x₀) ê₀ + (y − y₀) ê₁`, in the
             /// rectangle's plane to rounding) and its distance from `p`.
             #[inline]
-            pub fn sample_point(&self, u: V2) -> RectangleSample {
+            pub fn sample_point(&self, u: V2) -> LightSample {
                 let (x, y) = self.sample_local(u);
                 let offset = self.ex * x + self.ey * y - self.ez * self.d;
                 let distance = offset.length();
-                RectangleSample {
+                LightSample {
                     direction: offset / distance,
                     pdf: 1.0 / self.solid_angle,
                     point: self.corner + self.ex * (x - self.x0) + self.ey * (y - self.y0),

@@ -74,6 +74,12 @@ pub enum Cell {
         /// h, the cap's 1 − cos θmax.
         one_minus_cos_max: f64,
     },
+    /// Cell `index` of a caller-supplied partition
+    /// ([`ChiSquareTest::run_partition`](super::ChiSquareTest::run_partition)).
+    Part {
+        /// The cell's index in the partition.
+        index: usize,
+    },
 }
 
 impl std::fmt::Display for Cell {
@@ -92,6 +98,7 @@ impl std::fmt::Display for Cell {
             Cell::Outside { one_minus_cos_max } => {
                 write!(f, "outside the cap (1-cos θ > {one_minus_cos_max:.6e})")
             }
+            Cell::Part { index } => write!(f, "partition cell {index}"),
         }
     }
 }

@@ -144,20 +144,7 @@ impl ChiSquareTest {
         P: FnMut(DVec3) -> f64,
     {
         let grid = Grid::new(&self.binning)?;
-        if !(1..=1u64 << 53).contains(&self.samples) {
-            return Err(ChiSquareError::OutOfRange {
-                field: "samples",
-                value: self.samples as f64,
-                range: "[1, 2^53]",
-            });
-        }
-        if !(self.significance > 0.0 && self.significance < 1.0) {
-            return Err(ChiSquareError::OutOfRange {
-                field: "significance",
-                value: self.significance,
-                range: "(0, 1)",
-            });
-        }
+        self.check_parameters()?;
         let n = self.samples;
 
         // 1. Histogram.
@@ -203,6 +190,7 @@ impl ChiSquareTest {
                 Cell::Outside {
                     one_minus_cos_max: h,
                 } => outside_regions(h),
+                Cell::Part { .. } => unreachable!("a grid has no partition cells"),
             };
             // Errors of k independent regions add about like √k.
             let scale = 1.0 / (regions.len() as f64).sqrt();
@@ -237,6 +225,133 @@ impl ChiSquareTest {
             *e = nf * p;
         }
         let pdf_integral = neumaier_sum(probabilities);
+        let invalid = invalid.map(|(index, direction)| ImmediateFailure::InvalidDirection {
+            index,
+            direction,
+            count: invalid_count,
+        });
+        let bad_pdf =
+            bad_pdf.map(|(direction, value)| ImmediateFailure::InvalidPdf { direction, value });
+        Ok(self.finish(
+            Some(grid),
+            observed,
+            expected,
+            invalid.or(bad_pdf),
+            Quadrature {
+                pdf_integral,
+                error: quadrature_error,
+                unconverged_cells,
+                evaluations,
+            },
+        ))
+    }
+
+    /// The chi-square test over a partition the caller supplies: cell k has
+    /// probability `probabilities[k]` under the null hypothesis, and
+    /// `sample_cell(i)` draws sample i and says which cell it fell in
+    /// (`None`: in no cell, an immediate failure).
+    ///
+    /// This is the mode for densities with sharp supports, such as uniform
+    /// densities on spherical polygons: a partition of the support itself
+    /// (sub-triangles of a triangle, sub-rectangles of a rectangle, rings
+    /// and sectors of a disk) has exact cell probabilities from closed-form
+    /// solid angles or areas, where equal-solid-angle cells would cut the
+    /// support's edges and leave the quadrature an indicator function to
+    /// integrate. Pooling, the statistic and the verdict are as in
+    /// [`ChiSquareTest::run`]; the binning set on the test is not used.
+    ///
+    /// Errors when a probability is negative or not finite, or when they
+    /// do not sum to 1 within 1e-9 (nothing is sampled then).
+    pub fn run_partition<S>(
+        &self,
+        probabilities: &[f64],
+        mut sample_cell: S,
+    ) -> Result<ChiSquareOutcome, ChiSquareError>
+    where
+        S: FnMut(u64) -> Option<usize>,
+    {
+        self.check_parameters()?;
+        for &p in probabilities {
+            if !(p.is_finite() && p >= 0.0) {
+                return Err(ChiSquareError::OutOfRange {
+                    field: "probabilities",
+                    value: p,
+                    range: "[0, ∞) and finite",
+                });
+            }
+        }
+        let total = neumaier_sum(probabilities.iter().copied());
+        if !((total - 1.0).abs() <= 1e-9) {
+            return Err(ChiSquareError::OutOfRange {
+                field: "sum of probabilities",
+                value: total,
+                range: "1 ± 1e-9",
+            });
+        }
+        let n = self.samples;
+        let mut observed = vec![0u64; probabilities.len()];
+        let (mut outside, mut outside_count) = (None, 0u64);
+        for i in 0..n {
+            match sample_cell(i) {
+                Some(k) if k < observed.len() => observed[k] += 1,
+                _ => {
+                    outside_count += 1;
+                    outside.get_or_insert(i);
+                }
+            }
+        }
+        let expected = probabilities.iter().map(|p| p * n as f64).collect();
+        let failure = outside.map(|index| ImmediateFailure::OutsidePartition {
+            index,
+            count: outside_count,
+        });
+        Ok(self.finish(
+            None,
+            observed,
+            expected,
+            failure,
+            Quadrature {
+                pdf_integral: total,
+                error: 0.0,
+                unconverged_cells: 0,
+                evaluations: 0,
+            },
+        ))
+    }
+
+    /// Validates the sample count and the significance level.
+    fn check_parameters(&self) -> Result<(), ChiSquareError> {
+        if !(1..=1u64 << 53).contains(&self.samples) {
+            return Err(ChiSquareError::OutOfRange {
+                field: "samples",
+                value: self.samples as f64,
+                range: "[1, 2^53]",
+            });
+        }
+        if !(self.significance > 0.0 && self.significance < 1.0) {
+            return Err(ChiSquareError::OutOfRange {
+                field: "significance",
+                value: self.significance,
+                range: "(0, 1)",
+            });
+        }
+        Ok(())
+    }
+
+    /// Pools, computes the statistic and the verdict (steps 3–5).
+    fn finish(
+        &self,
+        grid: Option<Grid>,
+        observed: Vec<u64>,
+        expected: Vec<f64>,
+        earlier_failure: Option<ImmediateFailure>,
+        quadrature: Quadrature,
+    ) -> ChiSquareOutcome {
+        let n = self.samples;
+        let cell_of = |index: usize| match &grid {
+            Some(g) => g.cell(index),
+            None => Cell::Part { index },
+        };
 
         // 3.–5. Zero cells, pooling, statistic.
         let mut zero_pdf: Option<(usize, u64)> = None;
@@ -278,18 +393,12 @@ impl ChiSquareTest {
             _ => 0.0,
         };
 
-        let failure = if let Some((index, direction)) = invalid {
-            Some(ImmediateFailure::InvalidDirection {
-                index,
-                direction,
-                count: invalid_count,
-            })
-        } else if let Some((direction, value)) = bad_pdf {
-            Some(ImmediateFailure::InvalidPdf { direction, value })
+        let failure = if earlier_failure.is_some() {
+            earlier_failure
         } else if let Some((index, observed)) = zero_pdf {
             Some(ImmediateFailure::SamplesInZeroPdfCell {
                 index,
-                cell: grid.cell(index),
+                cell: cell_of(index),
                 observed,
                 cells: zero_pdf_cells,
                 samples: zero_pdf_samples,
@@ -302,16 +411,16 @@ impl ChiSquareTest {
             None
         };
 
-        Ok(ChiSquareOutcome {
+        ChiSquareOutcome {
             statistic,
             degrees_of_freedom,
             p_value,
             significance: self.significance,
             samples: n,
-            pdf_integral,
-            quadrature_error,
-            unconverged_cells,
-            pdf_evaluations: evaluations,
+            pdf_integral: quadrature.pdf_integral,
+            quadrature_error: quadrature.error,
+            unconverged_cells: quadrature.unconverged_cells,
+            pdf_evaluations: quadrature.evaluations,
             pooled_cells,
             pooled_expected: pooled_e,
             pooled_observed: pooled_o as u64,
@@ -320,7 +429,7 @@ impl ChiSquareTest {
             grid,
             observed,
             expected,
-        })
+        }
     }
 }
 
@@ -381,6 +490,13 @@ pub enum ImmediateFailure {
         /// Samples in all such cells.
         samples: u64,
     },
+    /// Samples fell in no cell of a caller-supplied partition.
+    OutsidePartition {
+        /// Index of the first such sample.
+        index: u64,
+        /// How many samples did.
+        count: u64,
+    },
     /// Fewer than 2 cells were left after pooling (dof < 1).
     TooFewDegreesOfFreedom {
         /// Cells left after pooling.
@@ -402,6 +518,10 @@ impl fmt::Display for ImmediateFailure {
             ImmediateFailure::SamplesInZeroPdfCell { index, cell, observed, cells, samples } => write!(
                 f,
                 "{samples} sample(s) in {cells} cell(s) where the integrated pdf is 0; first: cell {index}, {cell}, with {observed} sample(s)"
+            ),
+            ImmediateFailure::OutsidePartition { index, count } => write!(
+                f,
+                "{count} sample(s) outside every cell of the partition; first: sample {index}"
             ),
             ImmediateFailure::TooFewDegreesOfFreedom { cells } => write!(
                 f,
@@ -443,9 +563,17 @@ pub struct ChiSquareOutcome {
     pub pooled_merged: bool,
     /// Set when the test failed regardless of the statistic.
     pub failure: Option<ImmediateFailure>,
-    grid: Grid,
+    grid: Option<Grid>,
     observed: Vec<u64>,
     expected: Vec<f64>,
+}
+
+/// What the per-cell quadrature reports, carried into the outcome.
+struct Quadrature {
+    pdf_integral: f64,
+    error: f64,
+    unconverged_cells: usize,
+    evaluations: u64,
 }
 
 impl ChiSquareOutcome {
@@ -454,9 +582,10 @@ impl ChiSquareOutcome {
         self.failure.is_none() && self.p_value >= self.significance
     }
 
-    /// The grid the samples were binned on.
-    pub fn grid(&self) -> &Grid {
-        &self.grid
+    /// The grid the samples were binned on (`None` for a caller-supplied
+    /// partition).
+    pub fn grid(&self) -> Option<&Grid> {
+        self.grid.as_ref()
     }
 
     /// Observed counts per cell (flat index, see [`Grid`]).
@@ -493,7 +622,10 @@ impl ChiSquareOutcome {
             } else {
                 ((of - e) * (of - e) / e, "")
             };
-            let cell = self.grid.cell(i).to_string();
+            let cell = match &self.grid {
+                Some(g) => g.cell(i).to_string(),
+                None => Cell::Part { index: i }.to_string(),
+            };
             let _ = writeln!(
                 s,
                 "{i:>8}  {cell:<70} {o:>12} {e:>14.3} {contribution:>12.3}  {note}"
