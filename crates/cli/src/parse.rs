@@ -24,7 +24,6 @@ pub fn vec3(field: &str, text: &str) -> Result<DVec3, String> {
 }
 
 /// Parses "X,Y,Z;X,Y,Z;…" into exactly `count` vectors.
-#[allow(dead_code)] // used once spherical triangles land in `lambert sample`
 pub fn vec3_list(field: &str, text: &str, count: usize) -> Result<Vec<DVec3>, String> {
     let items: Vec<&str> = text.split(';').map(str::trim).collect();
     if items.len() != count {

@@ -59,6 +59,20 @@ fn csv_and_every_named_warp() {
         &["uniform-cone", "--cos-theta-max", "0.9"],
         &["uniform-cone", "--cos-theta-max", "-0.5"],
         &["sphere-light", "--center", "0,5,8.66", "--radius", "1"],
+        &[
+            "spherical-triangle",
+            "--vertices",
+            "-1,-1,3;2,-0.5,3.5;0,1.5,2.5",
+        ],
+        &[
+            "spherical-rectangle",
+            "--corner",
+            "-0.5,-0.3,2",
+            "--edge0",
+            "1,0,0",
+            "--edge1",
+            "0,0.8,0",
+        ],
     ];
     for case in cases {
         let mut args = vec!["sample"];
@@ -126,6 +140,26 @@ fn bad_parameters_exit_2_with_a_clear_message() {
         (
             &["sphere-light", "--center", "0,0,5", "--radius", "-1"],
             "radius",
+        ),
+        (
+            &["spherical-triangle", "--vertices", "0,0,1;1,0,1"],
+            "--vertices",
+        ),
+        (
+            &["spherical-triangle", "--vertices", "0,0,1;1,0,1;2,0,1"],
+            "degenerate",
+        ),
+        (
+            &[
+                "spherical-rectangle",
+                "--corner",
+                "0,0,1",
+                "--edge0",
+                "1,0,0",
+                "--edge1",
+                "1,1,0",
+            ],
+            "perpendicular",
         ),
         (&["no-such-warp"], "no-such-warp"),
         (&["uniform-sphere", "--format", "xml"], "xml"),

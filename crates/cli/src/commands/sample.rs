@@ -71,6 +71,24 @@ pub enum WarpCommand {
         #[arg(long)]
         radius: f64,
     },
+    /// Uniform in the spherical triangle a triangle subtends at the origin.
+    SphericalTriangle {
+        /// Three vertices "X,Y,Z;X,Y,Z;X,Y,Z".
+        #[arg(long, allow_hyphen_values = true)]
+        vertices: String,
+    },
+    /// Uniform in the spherical rectangle a rectangle subtends at the origin.
+    SphericalRectangle {
+        /// One corner X,Y,Z.
+        #[arg(long, allow_hyphen_values = true)]
+        corner: String,
+        /// First edge X,Y,Z from the corner.
+        #[arg(long, allow_hyphen_values = true)]
+        edge0: String,
+        /// Second edge X,Y,Z, perpendicular to the first.
+        #[arg(long, allow_hyphen_values = true)]
+        edge1: String,
+    },
 }
 
 impl WarpCommand {
@@ -93,6 +111,21 @@ impl WarpCommand {
             WarpCommand::SphereLight { center, radius } => DirectionWarpSpec::SphereLight {
                 center: parse::vec3("center", center)?,
                 radius: parse::finite("radius", *radius)?,
+            },
+            WarpCommand::SphericalTriangle { vertices } => {
+                let v = parse::vec3_list("vertices", vertices, 3)?;
+                DirectionWarpSpec::SphericalTriangle {
+                    vertices: [v[0], v[1], v[2]],
+                }
+            }
+            WarpCommand::SphericalRectangle {
+                corner,
+                edge0,
+                edge1,
+            } => DirectionWarpSpec::SphericalRectangle {
+                corner: parse::vec3("corner", corner)?,
+                edge0: parse::vec3("edge0", edge0)?,
+                edge1: parse::vec3("edge1", edge1)?,
             },
         })
     }
