@@ -11,7 +11,7 @@ use lambert_estimator::goodness_of_fit::{sidak_level, Binning, ChiSquareTest};
 use lambert_sampling::catalog::{DirectionWarpSpec, Precision};
 use lambert_sampling::{Independent, SampleSequence};
 use lambert_tests::{
-    binning_for, chi_square, direction_cases, one_minus_cos, partition_for, CHI_SQUARE_SAMPLES,
+    binning_for, chi_square, one_minus_cos, partition_for, run_case, runs, CHI_SQUARE_SAMPLES,
 };
 
 const FAMILY_ALPHA: f64 = 0.01;
@@ -19,48 +19,12 @@ const SEED: u64 = 20261122;
 
 #[test]
 fn every_warp_passes_in_both_precisions() {
-    let cases = direction_cases();
-    let runs: Vec<_> = cases
-        .iter()
-        .flat_map(|case| {
-            Precision::ALL
-                .into_iter()
-                .filter(move |p| *p == Precision::F64 || case.f32_resolvable)
-                .map(move |p| (case, p))
-        })
-        .collect();
+    let runs = runs();
     let alpha = sidak_level(FAMILY_ALPHA, runs.len());
     let mut failures = Vec::new();
-    for (case, precision) in runs {
-        let warp = case.spec.build(precision).unwrap();
-        let outcome = match partition_for(&case.spec, precision) {
-            // Sharp-edged uniform supports: exact cell probabilities.
-            Some(partition) => {
-                let mut sequence = Independent::new(SEED);
-                ChiSquareTest::new(binning_for(&case.spec))
-                    .samples(CHI_SQUARE_SAMPLES)
-                    .significance(alpha)
-                    .run_partition(&partition.probabilities, |i| {
-                        sequence.start_sample(i);
-                        let u = match precision {
-                            Precision::F32 => sequence.next_2d_f32().as_dvec2(),
-                            Precision::F64 => sequence.next_2d(),
-                        };
-                        (partition.locate)(warp.sample(u).direction)
-                    })
-                    .unwrap()
-            }
-            // Smooth densities: equal-solid-angle cells, pdf integrated.
-            None => chi_square(
-                warp.as_ref(),
-                precision,
-                binning_for(&case.spec),
-                |w| warp.pdf(w),
-                CHI_SQUARE_SAMPLES,
-                SEED,
-                alpha,
-            ),
-        };
+    for (case, precision) in &runs {
+        let (case, precision) = (case, *precision);
+        let outcome = run_case(case, precision, CHI_SQUARE_SAMPLES, SEED, alpha);
         eprintln!(
             "{:>26} {}: X² = {:9.1}, dof {:4}, p = {:.3}, ∫pdf = {:.9}",
             case.label,

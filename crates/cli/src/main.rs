@@ -18,6 +18,9 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Chi-square tests of every direction warp in both precisions (the
+    /// default job).
+    Validate(commands::validate::ValidateOptions),
     /// Write N unit directions drawn by one warp (for external checkers).
     Sample {
         #[command(subcommand)]
@@ -30,14 +33,20 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Some(Command::Sample { warp, options }) => commands::sample::run(&warp, &options),
-        None => {
-            println!("lambert: see `lambert --help`");
-            Ok(())
+        Some(Command::Sample { warp, options }) => {
+            commands::sample::run(&warp, &options).map(|()| true)
         }
+        Some(Command::Validate(options)) => commands::validate::run(&options),
+        None => commands::validate::run(&commands::validate::ValidateOptions {
+            samples: 1_000_000,
+            seed: 20261122,
+            alpha: 0.01,
+        }),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(true) => ExitCode::SUCCESS,
+        // A failed statistical test is a finding, not a usage error.
+        Ok(false) => ExitCode::from(1),
         Err(message) => {
             eprintln!("error: {message}");
             ExitCode::from(2)

@@ -56,6 +56,7 @@
 pub mod binning;
 pub mod chi_square;
 pub mod quadrature;
+pub mod warp_suite;
 
 pub use binning::{Binning, Cell, Grid};
 pub use chi_square::{sidak_level, ChiSquareOutcome, ChiSquareTest, ImmediateFailure};
