@@ -48,52 +48,101 @@ fn warps(c: &mut Criterion) {
     bench_warp!(g, "rng only f64", next_u64x2, DVec3::ZERO, |u| u
         .extend(0.0));
 
-    bench_warp!(g, "uniform hemisphere f32", next_u32x2, Vec3::ZERO, |u| {
-        s32::sample_uniform_hemisphere(u)
-    });
-    bench_warp!(g, "uniform hemisphere f64", next_u64x2, DVec3::ZERO, |u| {
+    // Every warp in both precisions, one sample per step, RNG included.
+    macro_rules! both {
+        ($name:expr, |$u:ident| $f32body:expr, $f64body:expr) => {
+            bench_warp!(g, concat!($name, " f32"), next_u32x2, Vec3::ZERO, |$u| {
+                $f32body
+            });
+            bench_warp!(g, concat!($name, " f64"), next_u64x2, DVec3::ZERO, |$u| {
+                $f64body
+            });
+        };
+    }
+    both!(
+        "uniform hemisphere",
+        |u| s32::sample_uniform_hemisphere(u),
         s64::sample_uniform_hemisphere(u)
-    });
-    bench_warp!(g, "cosine hemisphere f32", next_u32x2, Vec3::ZERO, |u| {
-        s32::sample_cosine_hemisphere(u)
-    });
-    bench_warp!(g, "cosine hemisphere f64", next_u64x2, DVec3::ZERO, |u| {
+    );
+    both!(
+        "cosine hemisphere",
+        |u| s32::sample_cosine_hemisphere(u),
         s64::sample_cosine_hemisphere(u)
-    });
-    bench_warp!(g, "uniform sphere f32", next_u32x2, Vec3::ZERO, |u| {
-        s32::sample_uniform_sphere(u)
-    });
-    bench_warp!(g, "uniform sphere f64", next_u64x2, DVec3::ZERO, |u| {
+    );
+    both!(
+        "uniform sphere",
+        |u| s32::sample_uniform_sphere(u),
         s64::sample_uniform_sphere(u)
-    });
+    );
+    both!(
+        "concentric disk",
+        |u| s32::sample_concentric_disk(u).extend(0.0),
+        s64::sample_concentric_disk(u).extend(0.0)
+    );
+    both!(
+        "uniform disk",
+        |u| s32::sample_uniform_disk(u).extend(0.0),
+        s64::sample_uniform_disk(u).extend(0.0)
+    );
     let cone32 = s32::UniformCone::from_theta_max(0.3).unwrap();
     let cone64 = s64::UniformCone::from_theta_max(0.3).unwrap();
-    bench_warp!(g, "uniform cone f32", next_u32x2, Vec3::ZERO, |u| cone32
-        .sample(u));
-    bench_warp!(g, "uniform cone f64", next_u64x2, DVec3::ZERO, |u| cone64
-        .sample(u));
+    both!("uniform cone", |u| cone32.sample(u), cone64.sample(u));
     let sph32 = s32::SphereSolidAngle::new(Vec3::ZERO, Vec3::new(5.0, 0.0, 8.66), 1.0).unwrap();
     let sph64 = s64::SphereSolidAngle::new(DVec3::ZERO, DVec3::new(5.0, 0.0, 8.66), 1.0).unwrap();
-    bench_warp!(g, "sphere light f32", next_u32x2, Vec3::ZERO, |u| sph32
-        .sample(u)
-        .direction);
-    bench_warp!(g, "sphere light f64", next_u64x2, DVec3::ZERO, |u| sph64
-        .sample(u)
-        .direction);
-    g.bench_function("concentric disk f32", |b| {
-        let mut r = rng();
-        b.iter(|| {
-            let mut acc = glam::Vec2::ZERO;
-            for _ in 0..BATCH {
-                acc += s32::sample_concentric_disk(next_u32x2(&mut r));
-            }
-            black_box(acc)
-        })
-    });
-    let tri = s64::UniformTriangle::new(DVec3::ZERO, DVec3::X, DVec3::Y).unwrap();
-    bench_warp!(g, "triangle area f64", next_u64x2, DVec3::ZERO, |u| tri
-        .sample(u)
-        .point);
+    both!(
+        "sphere light",
+        |u| sph32.sample(u).direction,
+        sph64.sample(u).direction
+    );
+    let (a, b, c) = (
+        DVec3::new(-1.0, -1.0, 3.0),
+        DVec3::new(2.0, -0.5, 3.5),
+        DVec3::new(0.0, 1.5, 2.5),
+    );
+    let tri32 =
+        s32::SphericalTriangle::new(Vec3::ZERO, a.as_vec3(), b.as_vec3(), c.as_vec3()).unwrap();
+    let tri64 = s64::SphericalTriangle::new(DVec3::ZERO, a, b, c).unwrap();
+    both!(
+        "spherical triangle",
+        |u| tri32.sample(u).direction,
+        tri64.sample(u).direction
+    );
+    let (corner, e0, e1) = (
+        DVec3::new(-0.5, -0.3, 2.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.8, 0.0),
+    );
+    let rect32 =
+        s32::SphericalRectangle::new(Vec3::ZERO, corner.as_vec3(), e0.as_vec3(), e1.as_vec3())
+            .unwrap();
+    let rect64 = s64::SphericalRectangle::new(DVec3::ZERO, corner, e0, e1).unwrap();
+    both!(
+        "spherical rectangle",
+        |u| rect32.sample(u).direction,
+        rect64.sample(u).direction
+    );
+    let area_tri32 = s32::UniformTriangle::new(a.as_vec3(), b.as_vec3(), c.as_vec3()).unwrap();
+    let area_tri64 = s64::UniformTriangle::new(a, b, c).unwrap();
+    both!(
+        "triangle area",
+        |u| area_tri32.sample(u).point,
+        area_tri64.sample(u).point
+    );
+    let disk32 = s32::UniformDiskArea::new(Vec3::Z, Vec3::NEG_Z, 0.5).unwrap();
+    let disk64 = s64::UniformDiskArea::new(DVec3::Z, DVec3::NEG_Z, 0.5).unwrap();
+    both!(
+        "disk area",
+        |u| disk32.sample(u).point,
+        disk64.sample(u).point
+    );
+    let par32 =
+        s32::UniformParallelogram::new(corner.as_vec3(), e0.as_vec3(), e1.as_vec3()).unwrap();
+    let par64 = s64::UniformParallelogram::new(corner, e0, e1).unwrap();
+    both!(
+        "parallelogram area",
+        |u| par32.sample(u).point,
+        par64.sample(u).point
+    );
     g.finish();
 }
 
