@@ -18,8 +18,9 @@
 
 macro_rules! trig_impl {
     () => {
-        /// (sin x, cos x) for x ∈ [−π/4, π/4], by Horner evaluation of the
-        /// Taylor series in x² (error below half an ulp on that interval).
+        /// (sin x, cos x) for x ∈ [−π/4, π/4], by Estrin evaluation of the
+        /// Taylor series in x² (truncation error below half an ulp on that
+        /// interval).
         ///
         /// # Panics
         /// Debug builds check the interval (with a few ulps of slack).
@@ -27,19 +28,31 @@ macro_rules! trig_impl {
         pub fn sin_cos_quarter(x: Real) -> (Real, Real) {
             debug_assert!(x.abs() <= PI / 4.0 * (1.0 + 8.0 * Real::EPSILON) || x.is_nan());
             let x2 = x * x;
-            let mut s: Real = SIN_TAYLOR[SIN_TAYLOR.len() - 1];
-            let mut k = SIN_TAYLOR.len() - 1;
-            while k > 0 {
-                k -= 1;
-                s = s * x2 + SIN_TAYLOR[k];
+            (x * estrin(x2, &SIN_TAYLOR), estrin(x2, &COS_TAYLOR))
+        }
+
+        /// Σ cₖ yᵏ by Estrin's scheme: pairs cₖ + cₖ₊₁ y, then pairs of
+        /// those with y², and so on. Same rounding order of magnitude as
+        /// Horner's rule but a dependency chain of depth log₂ n instead of n,
+        /// which is what bounds a sample-at-a-time loop (a warp feeds one
+        /// sample's result to the caller while the next is computed). The
+        /// loops are over constant lengths and unroll completely.
+        #[inline(always)]
+        fn estrin(y: Real, c: &[Real]) -> Real {
+            let mut buf = [0.0 as Real; 16];
+            let mut n = c.len();
+            buf[..n].copy_from_slice(c);
+            let mut power = y;
+            while n > 1 {
+                let half = n.div_ceil(2);
+                for i in 0..half {
+                    let hi = if 2 * i + 1 < n { buf[2 * i + 1] } else { 0.0 };
+                    buf[i] = buf[2 * i] + hi * power;
+                }
+                n = half;
+                power = power * power;
             }
-            let mut c: Real = COS_TAYLOR[COS_TAYLOR.len() - 1];
-            let mut k = COS_TAYLOR.len() - 1;
-            while k > 0 {
-                k -= 1;
-                c = c * x2 + COS_TAYLOR[k];
-            }
-            (s * x, c)
+            buf[0]
         }
 
         /// (sin 2πu, cos 2πu) for u ∈ [0, 1] with exact range reduction
@@ -47,17 +60,21 @@ macro_rules! trig_impl {
         #[inline(always)]
         pub fn sin_cos_2pi(u: Real) -> (Real, Real) {
             let four_u = 4.0 * u;
-            // q = round(4u) by truncation of 4u + ½ (u ≥ 0): a single
-            // conversion instruction, where `round` is a libm call on
-            // baseline x86-64.
-            let q = (four_u + 0.5) as i32;
-            let r = four_u - q as Real;
+            // q = round(4u): adding and subtracting 1.5·2^(p−1) (p the
+            // significand width) rounds to an integer in the float unit, and
+            // q's low bits are those of the sum's significand. Two additions
+            // and a bit move, where `round` is a libm call on baseline
+            // x86-64 and an int↔float round trip costs two conversions.
+            let magic: Real = 1.5 * (1u64 << (Real::MANTISSA_DIGITS - 1)) as Real;
+            let shifted = four_u + magic;
+            let q_bits = shifted.to_bits() as u32;
+            let r = four_u - (shifted - magic);
             let (s, c) = sin_cos_quarter(r * (PI / 2.0));
             // Rotate by q quarter turns without branches (random quadrants
             // would mispredict): odd q swaps (s, c) → (c, −s), q & 2 negates.
-            let odd = (q & 1) != 0;
+            let odd = (q_bits & 1) != 0;
             let (s1, c1) = if odd { (c, -s) } else { (s, c) };
-            let sign = 1.0 - (q & 2) as Real;
+            let sign = 1.0 - (q_bits & 2) as Real;
             (s1 * sign, c1 * sign)
         }
     };
