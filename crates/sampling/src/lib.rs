@@ -10,8 +10,8 @@
 //! and its inverse (`invert_*` / `invert`). Each states the measure of its
 //! density (per steradian or per square metre), its formula and its source.
 //!
-//! The f64 warps are in [`f64`] (also re-exported at the crate root); the
-//! f32 ones, for path tracers, in [`f32`]. Conventions (DESIGN.md): the local
+//! The f64 warps are in [`f64`](mod@f64) (also re-exported at the crate root); the
+//! f32 ones, for path tracers, in [`f32`](mod@f32). Conventions (DESIGN.md): the local
 //! frame has +z as the normal, θ measured from +z, φ from +x; `u ∈ [0, 1)²`,
 //! and `u` exactly 0 or 1 still gives a finite unit vector of positive pdf.
 //!

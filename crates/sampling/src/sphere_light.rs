@@ -2,7 +2,7 @@
 //!
 //! A sphere of radius r whose center is at distance d from the reference
 //! point subtends the cone sin²θmax = (r/d)², so directions are sampled
-//! uniformly in that cone ([`UniformCone`]), density 1/(2π(1 − cos θmax))
+//! uniformly in that cone ([`UniformCone`](crate::f64::UniformCone)), density 1/(2π(1 − cos θmax))
 //! per steradian (Shirley, Wang and Zimmerman 1996, "Monte Carlo techniques
 //! for direct lighting calculations"; pbrt-v4 §6.2.4). 1 − cos θmax is
 //! formed as s²/(1 + cos θmax) with cos θmax = √((d − r)(d + r))/d, so

@@ -14,7 +14,7 @@
 //! The quadrant then permutes and negates (sin x, cos x).
 //!
 //! The same polynomials serve the concentric disk, whose angle is already
-//! within [−π/4, π/4] ([`sin_cos_quarter`] of each precision).
+//! within [−π/4, π/4] ([`sin_cos_quarter`](crate::f64::sin_cos_quarter) of each precision).
 
 macro_rules! trig_impl {
     () => {

@@ -322,7 +322,7 @@ pub fn chi_square(
 }
 
 /// A partition of a warp's support into cells of exactly known probability,
-/// for [`ChiSquareTest::run_partition`](lambert_estimator::goodness_of_fit::ChiSquareTest::run_partition).
+/// for [`ChiSquareTest::run_partition`](super::ChiSquareTest::run_partition).
 pub struct Partition {
     /// Probability of each cell under the warp's density.
     pub probabilities: Vec<f64>,
