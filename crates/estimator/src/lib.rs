@@ -4,4 +4,10 @@
 //! check estimators and samplers: the chi-square goodness-of-fit test for
 //! direction samplers.
 
+pub mod emitter;
+pub mod geometry;
 pub mod goodness_of_fit;
+pub mod receiver;
+
+pub use emitter::{Emitter, EmitterError};
+pub use receiver::Receiver;

@@ -1,0 +1,19 @@
+//! A uniform sky: radiance L from every direction.
+
+use super::EmitterError;
+
+/// Radiance `radiance` (W/m²/sr) from every direction; a receiver sees
+/// E = Lπ whatever its normal (the lecture's uniform hemisphere).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sky {
+    /// L, in W/m²/sr.
+    pub radiance: f64,
+}
+
+impl Sky {
+    /// A sky of radiance L ≥ 0.
+    pub fn new(radiance: f64) -> Result<Self, EmitterError> {
+        EmitterError::check_non_negative("radiance", radiance)?;
+        Ok(Sky { radiance })
+    }
+}

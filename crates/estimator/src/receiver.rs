@@ -1,0 +1,40 @@
+//! The receiver: a point with a unit normal, one-sided (only the hemisphere
+//! n·ω > 0 above it receives light).
+
+use glam::DVec3;
+use lambert_sampling::f64::Frame;
+
+use crate::emitter::EmitterError;
+
+/// A point receiving irradiance E = ∫_{n·ω>0} L(ω) (n·ω) dω, in W/m².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Receiver {
+    /// The point, in metres.
+    pub point: DVec3,
+    /// The unit normal.
+    pub normal: DVec3,
+    /// The local frame whose z is the normal.
+    pub frame: Frame,
+}
+
+impl Receiver {
+    /// A receiver at `point` facing `normal` (any non-zero length; it is
+    /// normalised). Errors name the field.
+    pub fn new(point: DVec3, normal: DVec3) -> Result<Self, EmitterError> {
+        EmitterError::check_vector("receiver.point", point)?;
+        EmitterError::check_vector("receiver.normal", normal)?;
+        let len = normal.length();
+        if !(len > 0.0) || !len.is_finite() {
+            return Err(EmitterError::new(
+                "receiver.normal",
+                "must be a non-zero vector",
+            ));
+        }
+        let normal = normal / len;
+        Ok(Receiver {
+            point,
+            normal,
+            frame: Frame::from_normal(normal),
+        })
+    }
+}
