@@ -8,6 +8,7 @@ pub mod emitter;
 pub mod geometry;
 pub mod goodness_of_fit;
 pub mod receiver;
+pub mod strategy;
 
 pub use emitter::{Emitter, EmitterError};
 pub use receiver::Receiver;
