@@ -18,9 +18,9 @@
 //! |(s + c) − Σxᵢ| ≤ ε·|Σxᵢ| + O(n·ε²)·Σ|xᵢ|,     ε = 2⁻⁵³,
 //! ```
 //!
-//! against `(n − 1)·ε·Σ|xᵢ|` for the plain loop: for all n < 1/ε (≈ 9·10¹⁵)
-//! the result is the exact sum, rounded once, unless the sum cancels to far
-//! below Σ|xᵢ|. Unlike Kahan's original (1965), the branch keeps this bound
+//! against `(n − 1)·ε·Σ|xᵢ|` for the plain loop: while n·ε·Σ|xᵢ| ≪ |Σxᵢ|
+//! (no severe cancellation, n ≪ 1/ε ≈ 4.5·10¹⁵) the result is the exact sum
+//! to about one rounding. Unlike Kahan's original (1965), the branch keeps this bound
 //! when an addend is larger than the running sum.
 //!
 //! Source: A. Neumaier, "Rundungsfehleranalyse einiger Verfahren zur

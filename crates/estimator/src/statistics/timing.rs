@@ -58,3 +58,38 @@ impl Timing {
         (v > 0.0 && t > 0.0 && eff.is_finite()).then_some(eff)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::statistics::run_chunked_timed;
+
+    #[test]
+    fn per_sample_cost_and_efficiency() {
+        let t = Timing {
+            wall: Duration::from_millis(10),
+            samples: 1_000_000,
+            threads: 2,
+        };
+        assert!((t.ns_per_sample().unwrap() - 10.0).abs() < 1e-9);
+        assert!((t.thread_ns_per_sample().unwrap() - 20.0).abs() < 1e-9);
+        let e: Estimate = [0.0, 2.0].into_iter().collect(); // s² = 2
+        assert!((t.efficiency(&e).unwrap() - 1.0 / (2.0 * 20e-9)).abs() < 1e-3);
+        // Undefined cases: None.
+        let none = Timing { samples: 0, ..t };
+        assert_eq!(none.ns_per_sample(), None);
+        assert_eq!(none.efficiency(&e), None);
+        let constant: Estimate = [1.0, 1.0].into_iter().collect();
+        assert_eq!(t.efficiency(&constant), None);
+        assert_eq!(t.efficiency(&Estimate::new()), None);
+    }
+
+    #[test]
+    fn timed_run_reports_its_samples_and_threads() {
+        let r = run_chunked_timed(10_000, 1000, 2, |_, r| r.map(|i| i as f64).collect()).unwrap();
+        assert_eq!(r.timing.samples, 10_000);
+        assert_eq!(r.timing.threads, 2);
+        assert_eq!(r.estimate.mean(), Some(4999.5));
+        assert!(r.timing.ns_per_sample().unwrap() >= 0.0);
+    }
+}
