@@ -103,7 +103,7 @@ where
 }
 
 /// [`run_chunked`], timed: the estimate and the wall time of the whole run
-/// (pool start-up included, ~0.1 ms).
+/// (thread-pool start-up included).
 ///
 /// # Errors
 /// As [`run_chunked`].
