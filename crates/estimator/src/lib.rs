@@ -2,13 +2,18 @@
 //!
 //! Monte Carlo estimation of irradiance E = ∫ L cos θ dω, and the tools that
 //! check estimators and samplers: the chi-square goodness-of-fit test for
-//! direction samplers.
+//! direction samplers, and streaming statistics (compensated sums, Welford
+//! variance, confidence intervals, a deterministic parallel runner).
 
 pub mod emitter;
 pub mod geometry;
 pub mod goodness_of_fit;
 pub mod receiver;
+pub mod statistics;
 pub mod strategy;
 
 pub use emitter::{Emitter, EmitterError};
 pub use receiver::Receiver;
+pub use statistics::{
+    run_chunked, run_samples, ConfidenceInterval, Estimate, NeumaierSum, StatisticsError, Timing,
+};
