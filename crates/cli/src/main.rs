@@ -21,6 +21,10 @@ enum Command {
     /// Chi-square tests of every direction warp in both precisions (the
     /// default job).
     Validate(commands::validate::ValidateOptions),
+    /// Estimate a scene's irradiance by Monte Carlo.
+    Estimate(commands::estimate::EstimateOptions),
+    /// The closed-form irradiance of a scene.
+    Analytic(commands::analytic::AnalyticOptions),
     /// Write N unit directions drawn by one warp (for external checkers).
     Sample {
         #[command(subcommand)]
@@ -37,6 +41,8 @@ fn main() -> ExitCode {
             commands::sample::run(&warp, &options).map(|()| true)
         }
         Some(Command::Validate(options)) => commands::validate::run(&options),
+        Some(Command::Estimate(options)) => commands::estimate::run(&options).map(|()| true),
+        Some(Command::Analytic(options)) => commands::analytic::run(&options).map(|()| true),
         None => commands::validate::run(&commands::validate::ValidateOptions {
             samples: 1_000_000,
             seed: 20261122,

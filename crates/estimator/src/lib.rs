@@ -6,14 +6,17 @@
 //! variance, confidence intervals, a deterministic parallel runner).
 
 pub mod emitter;
+pub mod estimation;
 pub mod geometry;
 pub mod goodness_of_fit;
 pub mod receiver;
+pub mod scene;
 pub mod statistics;
 pub mod strategy;
 
 pub use emitter::{Emitter, EmitterError};
 pub use receiver::Receiver;
+pub use scene::{Scene, SceneError};
 pub use statistics::{
     run_chunked, run_samples, ConfidenceInterval, Estimate, NeumaierSum, StatisticsError, Timing,
 };

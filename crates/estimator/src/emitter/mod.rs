@@ -140,3 +140,15 @@ impl Emitter {
         }
     }
 }
+
+impl Emitter {
+    /// The closed-form irradiance this emitter gives the receiver, where
+    /// one is implemented (see [`crate::analytic`]); `None` otherwise.
+    pub fn closed_form_irradiance(&self, receiver: &Receiver) -> Option<f64> {
+        match self {
+            Emitter::Sky(s) => Some(s.radiance * std::f64::consts::PI),
+            Emitter::Point(_) | Emitter::Directional(_) => Some(self.delta_irradiance(receiver)),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,297 @@
+//! Estimating a scene's irradiance: strategies × sequences, deterministic
+//! parallel runs, honest standard errors.
+//!
+//! Independent samples: the mean and standard error of the per-sample
+//! estimates (Welford, compensated sums). Stratified and Owen-scrambled
+//! Sobol samples are not independent, so their standard error comes from
+//! R = 16 independent randomizations (randomized QMC; Owen 1997, L'Ecuyer &
+//! Lemieux 2002): the samples are split into R replicates with independent
+//! scrambles (or jitters), the estimate is the sample-weighted mean of the
+//! replicate means, and its standard error is the spread of the replicate
+//! means over √R, with a Student-t(R − 1) interval.
+//!
+//! Work is split into fixed chunks of sample indices, run on `threads`
+//! threads and merged in chunk order, so results are identical to the bit
+//! for any thread count (see [`crate::statistics::run_chunked`]).
+
+use std::fmt;
+use std::str::FromStr;
+use std::time::Instant;
+
+use lambert_sampling::{Independent, SampleSequence, Sobol, Stratified};
+
+use crate::scene::Scene;
+use crate::statistics::{run_samples, ConfidenceInterval, Estimate, StatisticsError};
+use crate::strategy::{PreparedEmitter, Strategy};
+
+/// Samples per parallel chunk.
+pub const CHUNK_SIZE: u64 = 4096;
+
+/// Independent randomizations of a randomized-QMC estimate.
+pub const RQMC_REPLICATES: u64 = 16;
+
+/// Which sample sequence drives the estimate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SequenceKind {
+    /// Independent PCG streams.
+    Independent,
+    /// Jittered stratification (per replicate).
+    Stratified,
+    /// Owen-scrambled Sobol (Burley 2020).
+    Sobol,
+}
+
+impl SequenceKind {
+    /// All three.
+    pub const ALL: [SequenceKind; 3] = [
+        SequenceKind::Independent,
+        SequenceKind::Stratified,
+        SequenceKind::Sobol,
+    ];
+
+    /// The command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SequenceKind::Independent => "independent",
+            SequenceKind::Stratified => "stratified",
+            SequenceKind::Sobol => "sobol",
+        }
+    }
+}
+
+impl fmt::Display for SequenceKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for SequenceKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "independent" => Ok(SequenceKind::Independent),
+            "stratified" => Ok(SequenceKind::Stratified),
+            "sobol" => Ok(SequenceKind::Sobol),
+            other => Err(format!(
+                "unknown sequence {other:?} (expected independent, stratified or sobol)"
+            )),
+        }
+    }
+}
+
+/// What to run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EstimateConfig {
+    /// The strategy (resolved per emitter).
+    pub strategy: Strategy,
+    /// The sample sequence.
+    pub sequence: SequenceKind,
+    /// Total samples (≥ 2; ≥ 2·16 for the randomized-QMC sequences).
+    pub samples: u64,
+    /// Seed of the sequence (and of the replicates' scrambles).
+    pub seed: u64,
+    /// Worker threads (≥ 1); the result does not depend on it.
+    pub threads: usize,
+}
+
+/// An estimate of a scene's irradiance, with its statistics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EstimateReport {
+    /// The estimated irradiance, W/m².
+    pub mean: f64,
+    /// Its standard error (0 when the estimate is exact).
+    pub std_error: f64,
+    /// The 99 % confidence interval.
+    pub ci99: (f64, f64),
+    /// Samples used.
+    pub samples: u64,
+    /// Wall time, seconds.
+    pub seconds: f64,
+    /// Wall time per sample, ns.
+    pub ns_per_sample: f64,
+    /// Variance of one sample's estimate (for efficiency 1/(V·T)); for
+    /// randomized QMC, the replicate-mean variance times the samples per
+    /// replicate.
+    pub sample_variance: f64,
+}
+
+/// Why an estimate could not be run.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EstimateError {
+    /// A configuration value out of range.
+    Config {
+        /// The field.
+        field: &'static str,
+        /// The problem.
+        problem: String,
+    },
+    /// The statistics failed (e.g. a non-finite sample value).
+    Statistics(StatisticsError),
+}
+
+impl fmt::Display for EstimateError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            EstimateError::Config { field, problem } => write!(f, "{field}: {problem}"),
+            EstimateError::Statistics(e) => write!(f, "statistics: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for EstimateError {}
+
+impl From<StatisticsError> for EstimateError {
+    fn from(e: StatisticsError) -> Self {
+        EstimateError::Statistics(e)
+    }
+}
+
+/// The scene's emitters prepared at its receiver for `strategy`, and the
+/// exact sum of its delta lights.
+pub fn prepare(scene: &Scene, strategy: Strategy) -> (Vec<PreparedEmitter>, f64) {
+    let mut prepared = Vec::new();
+    let mut delta = 0.0;
+    for e in &scene.emitters {
+        if e.is_delta() {
+            delta += e.delta_irradiance(&scene.receiver);
+        } else {
+            prepared.push(PreparedEmitter::new(e, &scene.receiver, strategy));
+        }
+    }
+    (prepared, delta)
+}
+
+/// One sample of the scene's irradiance (without the delta lights).
+#[inline]
+pub fn sample_scene<S: SampleSequence>(
+    prepared: &[PreparedEmitter],
+    scene: &Scene,
+    sequence: &mut S,
+) -> f64 {
+    prepared
+        .iter()
+        .map(|p| p.evaluate(&scene.receiver, sequence))
+        .sum()
+}
+
+fn mix(seed: u64, k: u64) -> u64 {
+    // SplitMix64 finaliser of seed + k·golden: independent replicate seeds.
+    let mut z = seed.wrapping_add(k.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Estimates the scene's irradiance as configured.
+pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport, EstimateError> {
+    if config.threads == 0 {
+        return Err(EstimateError::Config {
+            field: "threads",
+            problem: "must be at least 1, got 0".into(),
+        });
+    }
+    let rqmc = config.sequence != SequenceKind::Independent;
+    let minimum = if rqmc { 2 * RQMC_REPLICATES } else { 2 };
+    if config.samples < minimum {
+        return Err(EstimateError::Config {
+            field: "samples",
+            problem: format!(
+                "must be at least {minimum} for the {} sequence, got {}",
+                config.sequence, config.samples
+            ),
+        });
+    }
+    let start = Instant::now();
+    let (prepared, delta) = prepare(scene, config.strategy);
+    let (mean, std_error, interval, variance) = if prepared.is_empty() {
+        // Only delta lights: exact.
+        (delta, 0.0, (delta, delta), 0.0)
+    } else if !rqmc {
+        let e = run_samples(
+            &Independent::new(config.seed),
+            config.samples,
+            CHUNK_SIZE,
+            config.threads,
+            |s: &mut Independent| sample_scene(&prepared, scene, s),
+        )?;
+        summarize(&e, delta)?
+    } else {
+        let r = RQMC_REPLICATES;
+        let mut replicate_means = Estimate::new();
+        let mut weighted = crate::statistics::NeumaierSum::new();
+        for k in 0..r {
+            let n_k = config.samples / r + u64::from(k < config.samples % r);
+            let seed = mix(config.seed, k);
+            let e = match config.sequence {
+                SequenceKind::Sobol => run_samples(
+                    &Sobol::new(seed),
+                    n_k,
+                    CHUNK_SIZE,
+                    config.threads,
+                    |s: &mut Sobol| sample_scene(&prepared, scene, s),
+                )?,
+                SequenceKind::Stratified => {
+                    let strata = u32::try_from(n_k).map_err(|_| EstimateError::Config {
+                        field: "samples",
+                        problem: format!(
+                            "too many for stratification ({n_k} per replicate > 2^32 − 1)"
+                        ),
+                    })?;
+                    let seq = Stratified::new(strata, seed).map_err(|e| EstimateError::Config {
+                        field: "samples",
+                        problem: e.to_string(),
+                    })?;
+                    run_samples(
+                        &seq,
+                        n_k,
+                        CHUNK_SIZE,
+                        config.threads,
+                        |s: &mut Stratified| sample_scene(&prepared, scene, s),
+                    )?
+                }
+                SequenceKind::Independent => unreachable!(),
+            };
+            let m = e.mean().ok_or(StatisticsError::TooFewSamples {
+                n: e.n(),
+                needed: 1,
+            })?;
+            replicate_means.push(m);
+            weighted.add(m * n_k as f64);
+        }
+        let mean = weighted.sum() / config.samples as f64 + delta;
+        let se = replicate_means.std_error().unwrap_or(0.0);
+        let ci = ConfidenceInterval::new(mean, se, r, 0.99);
+        let per_replicate = (config.samples / r) as f64;
+        (
+            mean,
+            se,
+            (ci.lower, ci.upper),
+            se * se * r as f64 * per_replicate,
+        )
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    Ok(EstimateReport {
+        mean,
+        std_error,
+        ci99: interval,
+        samples: config.samples,
+        seconds,
+        ns_per_sample: seconds * 1e9 / config.samples as f64,
+        sample_variance: variance,
+    })
+}
+
+/// Mean (plus the delta lights), standard error, 99 % interval and
+/// per-sample variance of an independent-sample estimate.
+fn summarize(e: &Estimate, delta: f64) -> Result<(f64, f64, (f64, f64), f64), EstimateError> {
+    let mean = e.mean().ok_or(StatisticsError::TooFewSamples {
+        n: e.n(),
+        needed: 1,
+    })? + delta;
+    let se = e.std_error().ok_or(StatisticsError::TooFewSamples {
+        n: e.n(),
+        needed: 2,
+    })?;
+    let ci = ConfidenceInterval::new(mean, se, e.n(), 0.99);
+    Ok((mean, se, (ci.lower, ci.upper), e.variance().unwrap_or(0.0)))
+}
