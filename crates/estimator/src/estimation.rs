@@ -2,7 +2,8 @@
 //! parallel runs, honest standard errors.
 //!
 //! Independent samples: the mean and standard error of the per-sample
-//! estimates (Welford, compensated sums). Stratified and Owen-scrambled
+//! estimates (compensated sums; each chunk draws from its own PCG stream,
+//! rand_pcg's `Pcg64Mcg`, seeded from the run's seed and the chunk index). Stratified and Owen-scrambled
 //! Sobol samples are not independent, so their standard error comes from
 //! R = 16 independent randomizations (randomized QMC; Owen 1997, L'Ecuyer &
 //! Lemieux 2002): the samples are split into R replicates with independent
@@ -18,10 +19,11 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
-use lambert_sampling::{Independent, SampleSequence, Sobol, Stratified};
+use glam::DVec2;
+use lambert_sampling::{SampleSequence, Sobol, Stratified};
 
 use crate::scene::Scene;
-use crate::statistics::{run_samples, ConfidenceInterval, Estimate, StatisticsError};
+use crate::statistics::{run_chunked, run_samples, ConfidenceInterval, Estimate, StatisticsError};
 use crate::strategy::{PreparedEmitter, Strategy};
 
 /// Samples per parallel chunk.
@@ -207,12 +209,11 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
         // Only delta lights: exact.
         (delta, 0.0, (delta, delta), 0.0)
     } else if !rqmc {
-        let e = run_samples(
-            &Independent::new(config.seed),
+        let e = run_chunked(
             config.samples,
             CHUNK_SIZE,
             config.threads,
-            |s: &mut Independent| sample_scene(&prepared, scene, s),
+            |chunk, range| independent_chunk(&prepared, scene, config.seed, chunk, range),
         )?;
         summarize(&e, delta)?
     } else {
@@ -279,6 +280,40 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
         ns_per_sample: seconds * 1e9 / config.samples as f64,
         sample_variance: variance,
     })
+}
+
+/// One chunk of an independent-sample estimate: the chunk's own PCG stream
+/// (seeded from the run's seed and the chunk index, so the chunk's values do
+/// not depend on which thread runs it) fills the uniform points of every
+/// emitter, the emitters add their estimates into a buffer, and the buffer
+/// is summarised by two passes ([`Estimate::from_values`]).
+fn independent_chunk(
+    prepared: &[PreparedEmitter],
+    scene: &Scene,
+    seed: u64,
+    chunk: u64,
+    range: std::ops::Range<u64>,
+) -> Estimate {
+    use rand_core::{RngCore, SeedableRng};
+    let n = (range.end - range.start) as usize;
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(mix(seed, chunk));
+    let mut values = vec![0.0f64; n];
+    let mut u = vec![DVec2::ZERO; n];
+    let mut u2 = vec![DVec2::ZERO; n];
+    let scale = 1.0 / (1u64 << 53) as f64;
+    let mut next = || (rng.next_u64() >> 11) as f64 * scale;
+    for p in prepared {
+        for x in u.iter_mut() {
+            *x = DVec2::new(next(), next());
+        }
+        if p.strategy.dimensions() > 1 {
+            for x in u2.iter_mut() {
+                *x = DVec2::new(next(), next());
+            }
+        }
+        p.evaluate_batch(&scene.receiver, &u, &u2, &mut values);
+    }
+    Estimate::from_values(&values)
 }
 
 /// Mean (plus the delta lights), standard error, 99 % interval and

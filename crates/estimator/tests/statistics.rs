@@ -455,3 +455,21 @@ fn z_over_200_seeds_is_standard_normal_and_miscaled_errors_are_rejected() {
         );
     }
 }
+
+/// `from_values` (two passes over a buffer) agrees with one-by-one pushes:
+/// same n, mean to the bit on integer-valued data (both sums are exact),
+/// variance to 1e-14 relative (different but compensated roundings).
+#[test]
+fn from_values_matches_pushes() {
+    use lambert_estimator::Estimate;
+    let values: Vec<f64> = (0..10_000).map(|i| ((i * 7919) % 1000) as f64).collect();
+    let a = Estimate::from_values(&values);
+    let b: Estimate = values.iter().copied().collect();
+    assert_eq!(a.n(), b.n());
+    assert_eq!(a.mean(), b.mean());
+    let (va, vb) = (a.variance().unwrap(), b.variance().unwrap());
+    assert!((va - vb).abs() <= 1e-14 * vb, "{va} vs {vb}");
+    let with_nan = Estimate::from_values(&[1.0, f64::NAN, 3.0]);
+    assert_eq!(with_nan.non_finite(), 1);
+    assert_eq!(Estimate::from_values(&[]).n(), 0);
+}

@@ -95,6 +95,12 @@ macro_rules! sphere_light_impl {
                 &self.cone
             }
 
+            /// The frame whose z axis points at the sphere's center.
+            #[inline]
+            pub fn frame(&self) -> &Frame {
+                &self.frame
+            }
+
             /// The subtended solid angle 2π(1 − cos θmax), in steradians.
             #[inline]
             pub fn solid_angle(&self) -> Real {

@@ -139,6 +139,49 @@ impl Estimate {
         self.m2.add(before * after);
     }
 
+    /// The estimate of a block of samples held in memory, by two passes:
+    /// the compensated sum gives the mean, then M₂ = Σ(x − m)² is summed
+    /// about it (compensated). Two passes are at least as accurate as
+    /// Welford's update and cost a fraction of a push per sample, so the
+    /// estimators fill a chunk's values in a buffer and summarise it here;
+    /// the result merges like any other estimate. Non-finite values are
+    /// counted in [`non_finite`](Estimate::non_finite).
+    pub fn from_values(values: &[f64]) -> Estimate {
+        let mut sum = NeumaierSum::new();
+        let mut n = 0u64;
+        let mut non_finite = 0u64;
+        for &x in values {
+            if x.is_finite() {
+                sum.add(x);
+                n += 1;
+            } else {
+                non_finite += 1;
+            }
+        }
+        if n == 0 {
+            return Estimate {
+                non_finite,
+                ..Estimate::new()
+            };
+        }
+        let (mean_hi, mean_lo) = split_mean(&sum, n);
+        let mut m2 = NeumaierSum::new();
+        for &x in values {
+            if x.is_finite() {
+                let d = (x - mean_hi) - mean_lo;
+                m2.add(d * d);
+            }
+        }
+        Estimate {
+            n,
+            non_finite,
+            sum,
+            mean_hi,
+            mean_lo,
+            m2,
+        }
+    }
+
     /// Adds `count` copies of `x` at once, in O(1) (O(count / 2⁵³)).
     ///
     /// The copies form a block with n = count, Σ = x·count exactly (a

@@ -28,6 +28,7 @@ pub use light_sampler::{LightDirection, LightSampler};
 use std::fmt;
 use std::str::FromStr;
 
+use glam::{DVec2, DVec3};
 use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, sample_cosine_hemisphere,
     sample_uniform_hemisphere,
@@ -179,9 +180,38 @@ impl PreparedEmitter {
     /// dimensions from `sequence` (positioned at the sample already).
     #[inline]
     pub fn evaluate<S: SampleSequence>(&self, receiver: &Receiver, sequence: &mut S) -> f64 {
+        let u = sequence.next_2d();
+        let u2 = if self.strategy.dimensions() > 1 {
+            sequence.next_2d()
+        } else {
+            DVec2::ZERO
+        };
+        self.evaluate_u(receiver, u, u2)
+    }
+
+    /// Whether every light sample is known to see the emitter with
+    /// radiance L (a sphere's or a sky cap's cone, a spherical polygon seen
+    /// from its emitting side), so the radiance lookup can be skipped.
+    fn light_always_hits(&self) -> bool {
+        matches!(self.light, LightSampler::Cone(_) | LightSampler::Cap(..))
+    }
+
+    /// The emitter's radiance when [`light_always_hits`](Self::light_always_hits).
+    fn uniform_radiance(&self) -> f64 {
+        match &self.emitter {
+            Emitter::Sphere(s) => s.radiance,
+            Emitter::SkyCap(c) => c.radiance,
+            _ => 0.0,
+        }
+    }
+
+    /// One sample of the estimate from the uniform 2-D points `u` (and
+    /// `u2`, the light sample of MIS).
+    #[inline]
+    pub fn evaluate_u(&self, receiver: &Receiver, u: DVec2, u2: DVec2) -> f64 {
         let p = receiver.point;
         let frame = &receiver.frame;
-        let radiance_cos = |w: glam::DVec3| {
+        let radiance_cos = |w: DVec3| {
             let cos = w.dot(receiver.normal);
             if cos > 0.0 {
                 self.emitter.radiance_toward(p, w) * cos
@@ -191,11 +221,11 @@ impl PreparedEmitter {
         };
         match self.strategy {
             Strategy::UniformHemisphere => {
-                let local = sample_uniform_hemisphere(sequence.next_2d());
+                let local = sample_uniform_hemisphere(u);
                 radiance_cos(frame.from_local(local)) / pdf_uniform_hemisphere(local)
             }
             Strategy::CosineHemisphere => {
-                let local = sample_cosine_hemisphere(sequence.next_2d());
+                let local = sample_cosine_hemisphere(u);
                 let w = frame.from_local(local);
                 // L cos θ / (cos θ/π) = π L: no division by a tiny cosine.
                 if local.z > 0.0 {
@@ -204,26 +234,27 @@ impl PreparedEmitter {
                     0.0
                 }
             }
-            Strategy::Light => match self.light.sample(sequence.next_2d()) {
+            Strategy::Light => match self.light.sample(u) {
+                Some(s) if self.light_always_hits() => {
+                    self.uniform_radiance() * s.direction.dot(receiver.normal).max(0.0) / s.pdf
+                }
                 Some(s) => radiance_cos(s.direction) / s.pdf,
                 None => 0.0,
             },
-            Strategy::Area => match self.area.sample(sequence.next_2d()) {
+            Strategy::Area => match self.area.sample(u) {
                 Some(s) => radiance_cos(s.direction) / s.pdf,
                 None => 0.0,
             },
             Strategy::Mis(h) => {
-                let u_cos = sequence.next_2d();
-                let u_light = sequence.next_2d();
                 let mut f = 0.0;
-                let local = sample_cosine_hemisphere(u_cos);
+                let local = sample_cosine_hemisphere(u);
                 let w = frame.from_local(local);
                 let p_cos = pdf_cosine_hemisphere(local);
                 if p_cos > 0.0 {
                     let p_light = self.light.pdf(w);
                     f += h.weight(p_cos, p_light) * radiance_cos(w) / p_cos;
                 }
-                if let Some(s) = self.light.sample(u_light) {
+                if let Some(s) = self.light.sample(u2) {
                     let local = frame.to_local(s.direction);
                     let p_cos = pdf_cosine_hemisphere(local);
                     f += h.weight(s.pdf, p_cos) * radiance_cos(s.direction) / s.pdf;
@@ -231,6 +262,35 @@ impl PreparedEmitter {
                 f
             }
             Strategy::Auto => unreachable!("strategies are resolved per emitter"),
+        }
+    }
+
+    /// Adds this emitter's estimate for each sample of a chunk to `out`
+    /// (`out[i] += F(u[i], u2[i])`). Light sampling of a cone (spheres,
+    /// sky caps) runs through the slice form of the cone warp, which the
+    /// compiler can vectorise; everything else loops over
+    /// [`evaluate_u`](Self::evaluate_u).
+    pub fn evaluate_batch(&self, receiver: &Receiver, u: &[DVec2], u2: &[DVec2], out: &mut [f64]) {
+        if let (Strategy::Light, LightSampler::Cone(sphere)) = (self.strategy, &self.light) {
+            // pdf is the constant 1/Ω: F = L Ω max(n·ω, 0).
+            let scale = self.uniform_radiance() * sphere.solid_angle();
+            let cone = sphere.cone();
+            let frame = sphere.frame();
+            // Rotate the normal into the cone's frame once: n·ω = n_local·ω_local.
+            let n_local = frame.to_local(receiver.normal);
+            const BLOCK: usize = 256;
+            let mut local = [DVec3::ZERO; BLOCK];
+            for (u_block, out_block) in u.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
+                let local = &mut local[..u_block.len()];
+                cone.sample_batch(u_block, local);
+                for (o, w) in out_block.iter_mut().zip(local.iter()) {
+                    *o += scale * n_local.dot(*w).max(0.0);
+                }
+            }
+            return;
+        }
+        for ((o, &a), &b) in out.iter_mut().zip(u).zip(u2) {
+            *o += self.evaluate_u(receiver, a, b);
         }
     }
 }
