@@ -5,6 +5,7 @@
 //! direction samplers, and streaming statistics (compensated sums, Welford
 //! variance, confidence intervals, a deterministic parallel runner).
 
+pub mod builtin;
 pub mod emitter;
 pub mod estimation;
 pub mod geometry;
