@@ -22,15 +22,7 @@ impl Receiver {
     /// normalised). Errors name the field.
     pub fn new(point: DVec3, normal: DVec3) -> Result<Self, EmitterError> {
         EmitterError::check_vector("receiver.point", point)?;
-        EmitterError::check_vector("receiver.normal", normal)?;
-        let len = normal.length();
-        if !(len > 0.0) || !len.is_finite() {
-            return Err(EmitterError::new(
-                "receiver.normal",
-                "must be a non-zero vector",
-            ));
-        }
-        let normal = normal / len;
+        let normal = EmitterError::unit("receiver.normal", normal)?;
         Ok(Receiver {
             point,
             normal,

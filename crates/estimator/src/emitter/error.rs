@@ -79,12 +79,15 @@ impl EmitterError {
     /// `v` normalised; errors if it is zero or not finite.
     pub fn unit(field: &str, v: DVec3) -> Result<DVec3, EmitterError> {
         Self::check_vector(field, v)?;
-        let len = v.length();
-        if len > 0.0 && len.is_finite() {
-            Ok(v / len)
-        } else {
-            Err(EmitterError::new(field, "must be a non-zero vector"))
+        // Scaled by the largest component first, so that neither a huge
+        // vector (|v|² overflows) nor a tiny one (|v|² underflows, losing
+        // precision) is mistaken for zero or normalised inexactly.
+        let largest = v.abs().max_element();
+        if !(largest > 0.0) {
+            return Err(EmitterError::new(field, "must be a non-zero vector"));
         }
+        let scaled = v / largest;
+        Ok(scaled / scaled.length())
     }
 }
 

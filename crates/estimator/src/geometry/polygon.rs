@@ -43,14 +43,21 @@ impl ConvexPolygon {
             );
         }
         let twice_area = newell.length();
-        if !(twice_area > 0.0) {
-            return Err("has zero area (collinear or repeated vertices)".into());
-        }
-        let normal = newell / twice_area;
         let extent = vertices
             .iter()
             .map(|v| (*v - vertices[0]).length())
             .fold(0.0, f64::max);
+        if !twice_area.is_finite() || !extent.is_finite() {
+            // Otherwise the normal would be NaN and every check below pass.
+            return Err(format!(
+                "is too large: its area or extent overflows (area {:e}, extent {extent:e})",
+                0.5 * twice_area
+            ));
+        }
+        if !(twice_area > 0.0) {
+            return Err("has zero area (collinear or repeated vertices)".into());
+        }
+        let normal = newell / twice_area;
         for (i, v) in vertices.iter().enumerate() {
             let off = normal.dot(*v - vertices[0]).abs();
             if off > 1e-9 * extent {

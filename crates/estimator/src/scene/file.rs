@@ -155,7 +155,14 @@ fn build(raw: &RawEmitter) -> Result<Emitter, EmitterError> {
                 (Some(r), None) => r,
                 (None, Some(d)) => {
                     EmitterError::check_finite("half_angle_deg", d)?;
-                    d.to_radians()
+                    if !(d > 0.0 && d <= 180.0) {
+                        return Err(EmitterError::new(
+                            "half_angle_deg",
+                            format!("must lie in (0, 180] degrees, got {d}"),
+                        ));
+                    }
+                    // 180° is π exactly (to_radians may round just above).
+                    d.to_radians().min(std::f64::consts::PI)
                 }
                 (Some(_), Some(_)) => {
                     return Err(EmitterError::new(

@@ -1,0 +1,367 @@
+//! `lambert estimate` and `lambert analytic`: the JSON interface, every
+//! strategy × sequence, thread-count independence, closed forms, and exit
+//! code 2 with a message naming the field (and nothing on stdout) on bad
+//! input.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn lambert(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lambert"))
+        .args(args)
+        .output()
+        .expect("the lambert binary runs")
+}
+
+/// A scene file under the temp directory, removed on drop.
+struct TempScene(PathBuf);
+
+impl TempScene {
+    fn new(test: &str, text: &str) -> Self {
+        let path = std::env::temp_dir().join(format!(
+            "lambert-estimate-command-{test}-{}.toml",
+            std::process::id()
+        ));
+        std::fs::write(&path, text).expect("temp file written");
+        TempScene(path)
+    }
+
+    fn path(&self) -> &str {
+        self.0.to_str().expect("a UTF-8 temp path")
+    }
+}
+
+impl Drop for TempScene {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
+const SPHERE: &str = r#"
+[receiver]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+
+[[emitters]]
+kind = "sphere"
+center = [0.0, 5.0, 8.66]
+radius = 1.0
+radiance = 1.0
+"#;
+
+const SKY_AND_POINT: &str = r#"
+[receiver]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+
+[[emitters]]
+kind = "sky"
+radiance = 0.7
+
+[[emitters]]
+kind = "point"
+position = [1.0, 2.0, 3.0]
+intensity = 64.9
+"#;
+
+fn success_json(out: &Output) -> (Value, String) {
+    let stdout = String::from_utf8(out.stdout.clone()).expect("UTF-8 stdout");
+    assert!(
+        out.status.success(),
+        "status {:?}, stderr {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(stdout.trim_end().lines().count(), 1, "one line: {stdout}");
+    let value: Value = serde_json::from_str(&stdout).expect("valid JSON");
+    (value, stdout)
+}
+
+/// The literal text of a top-level number in a one-line JSON object.
+fn raw_number<'a>(json: &'a str, key: &str) -> &'a str {
+    let start = json.find(&format!("\"{key}\":")).expect("key present") + key.len() + 3;
+    let rest = &json[start..];
+    let end = rest.find([',', '}']).expect("value ends");
+    &rest[..end]
+}
+
+#[test]
+fn json_has_exactly_the_documented_keys() {
+    let scene = TempScene::new("json_keys", SPHERE);
+    let out = lambert(&[
+        "estimate",
+        scene.path(),
+        "--json",
+        "--samples",
+        "4096",
+        "--seed",
+        "3",
+    ]);
+    let (v, _) = success_json(&out);
+    let obj = v.as_object().expect("a JSON object");
+    let mut keys: Vec<&str> = obj.keys().map(String::as_str).collect();
+    keys.sort_unstable();
+    assert_eq!(
+        keys,
+        [
+            "analytic",
+            "ci99",
+            "mean",
+            "ns_per_sample",
+            "rel_error",
+            "samples",
+            "seconds",
+            "std_error",
+            "z"
+        ]
+    );
+    let mean = v["mean"].as_f64().unwrap();
+    let se = v["std_error"].as_f64().unwrap();
+    let ci = v["ci99"].as_array().expect("ci99 is an array");
+    assert_eq!(ci.len(), 2);
+    let (lo, hi) = (ci[0].as_f64().unwrap(), ci[1].as_f64().unwrap());
+    assert!(lo < mean && mean < hi, "{lo} < {mean} < {hi}");
+    assert!(se > 0.0 && mean > 0.0);
+    assert_eq!(v["samples"].as_u64(), Some(4096));
+    assert!(v["seconds"].as_f64().unwrap() >= 0.0);
+    assert!(v["ns_per_sample"].as_f64().unwrap() >= 0.0);
+    // A sphere light has no closed form (yet): analytic, rel_error, z null.
+    assert!(v["analytic"].is_null() && v["rel_error"].is_null() && v["z"].is_null());
+}
+
+#[test]
+fn json_compares_with_the_closed_form_when_there_is_one() {
+    let scene = TempScene::new("json_closed_form", SKY_AND_POINT);
+    for strategy in ["uniform-hemisphere", "cosine-hemisphere"] {
+        let out = lambert(&[
+            "estimate",
+            scene.path(),
+            "--json",
+            "--samples",
+            "4096",
+            "--strategy",
+            strategy,
+        ]);
+        let (v, _) = success_json(&out);
+        let analytic = v["analytic"].as_f64().expect("a number");
+        let mean = v["mean"].as_f64().unwrap();
+        let rel = v["rel_error"].as_f64().expect("a number");
+        assert_eq!(rel, (mean - analytic) / analytic);
+        if strategy == "cosine-hemisphere" {
+            // Zero variance under a uniform sky: exact, z undefined.
+            assert_eq!(v["std_error"].as_f64(), Some(0.0));
+            assert!(v["z"].is_null());
+            assert!(rel.abs() < 1e-14, "{rel}");
+        } else {
+            let z = v["z"].as_f64().expect("a number");
+            assert!(z.abs() < 5.0, "z = {z}");
+        }
+    }
+}
+
+#[test]
+fn every_strategy_and_sequence_runs() {
+    let scene = TempScene::new("every_strategy", SPHERE);
+    let strategies = [
+        "auto",
+        "uniform-hemisphere",
+        "cosine-hemisphere",
+        "light",
+        "area",
+        "mis",
+        "mis-balance",
+    ];
+    let mut means = Vec::new();
+    for strategy in strategies {
+        for sequence in ["independent", "stratified", "sobol"] {
+            let out = lambert(&[
+                "estimate",
+                scene.path(),
+                "--json",
+                "--samples",
+                "4096",
+                "--strategy",
+                strategy,
+                "--sequence",
+                sequence,
+            ]);
+            let (v, _) = success_json(&out);
+            let mean = v["mean"].as_f64().unwrap();
+            let se = v["std_error"].as_f64().unwrap();
+            assert!(mean.is_finite() && se.is_finite() && se >= 0.0);
+            means.push((strategy, sequence, mean, se));
+        }
+    }
+    // All estimate the same irradiance: compare with the light-sampling
+    // estimate (the most precise) within 6 combined standard errors.
+    let (_, _, reference, reference_se) = means[3 * 3];
+    for (strategy, sequence, mean, se) in means {
+        let tolerance = 6.0 * (se * se + reference_se * reference_se).sqrt() + 1e-12;
+        assert!(
+            (mean - reference).abs() <= tolerance,
+            "{strategy} × {sequence}: {mean} vs {reference} (tolerance {tolerance})"
+        );
+    }
+}
+
+#[test]
+fn thread_count_does_not_change_the_result() {
+    let scene = TempScene::new("threads", SPHERE);
+    for sequence in ["independent", "stratified", "sobol"] {
+        let run = |threads: &str| {
+            let out = lambert(&[
+                "estimate",
+                scene.path(),
+                "--json",
+                "--samples",
+                "20000",
+                "--sequence",
+                sequence,
+                "--strategy",
+                "mis",
+                "--threads",
+                threads,
+            ]);
+            success_json(&out).1
+        };
+        let (one, two) = (run("1"), run("2"));
+        for key in ["mean", "std_error"] {
+            assert_eq!(
+                raw_number(&one, key),
+                raw_number(&two, key),
+                "{sequence}: {key}"
+            );
+        }
+        assert_eq!(
+            one.split("\"ci99\":").nth(1).unwrap().split(']').next(),
+            two.split("\"ci99\":").nth(1).unwrap().split(']').next(),
+            "{sequence}: ci99"
+        );
+    }
+}
+
+#[test]
+fn analytic_gives_sky_plus_point_exactly() {
+    let scene = TempScene::new("analytic", SKY_AND_POINT);
+    let out = lambert(&["analytic", scene.path(), "--json"]);
+    let (v, _) = success_json(&out);
+    let obj = v.as_object().unwrap();
+    assert_eq!(obj.len(), 2);
+    // E = L π + I cos θ / r². The sky term is one multiplication, so exact;
+    // the point term comes out 1 ulp away from the left-to-right evaluation
+    // of I·cos θ/r² here (the library's rounding order differs, e.g.
+    // I·(cos θ/r²)), so it and the total are compared to 1e-15 relative,
+    // a few ulps.
+    let sky = 0.7 * std::f64::consts::PI;
+    let (x, y, z) = (1.0f64, 2.0f64, 3.0f64);
+    let r2 = x * x + y * y + z * z;
+    let cos = z / r2.sqrt();
+    let point = 64.9 * cos / r2;
+    let per: Vec<f64> = v["per_emitter"]
+        .as_array()
+        .expect("per_emitter is an array")
+        .iter()
+        .map(|e| e.as_f64().unwrap())
+        .collect();
+    assert_eq!(per.len(), 2);
+    assert_eq!(per[0], sky);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-15 * b.abs();
+    assert!(close(per[1], point), "{} vs {point}", per[1]);
+    let total = v["irradiance"].as_f64().expect("a number");
+    assert!(close(total, sky + point), "{total} vs {}", sky + point);
+    assert_eq!(total, per[0] + per[1], "the total is the sum shown");
+}
+
+#[test]
+fn analytic_without_a_closed_form_is_a_user_error() {
+    let scene = TempScene::new("no_closed_form", SPHERE);
+    let out = lambert(&["analytic", scene.path(), "--json"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("no closed form"), "{err}");
+    assert!(err.contains("emitters[0] (sphere)"), "{err}");
+}
+
+/// Exit code 2, an empty stdout and every needle in stderr.
+fn user_error(args: &[&str], needles: &[&str]) {
+    let out = lambert(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(out.stdout.is_empty(), "{args:?}: stdout {:?}", out.stdout);
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: {err:?} should contain {n:?}");
+    }
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_field() {
+    let good = TempScene::new("bad_input_good", SPHERE);
+    let zero_radius = TempScene::new(
+        "bad_input_zero_radius",
+        &SPHERE.replace("radius = 1.0", "radius = 0.0"),
+    );
+    let unknown_key = TempScene::new(
+        "bad_input_unknown_key",
+        &SPHERE.replace("radiance = 1.0", "radiance = 1.0\ncolour = 3"),
+    );
+    let inside = TempScene::new(
+        "bad_input_inside",
+        &SPHERE.replace("radius = 1.0", "radius = 20.0"),
+    );
+    let syntax = TempScene::new("bad_input_syntax", "[receiver\n");
+    let missing = std::env::temp_dir().join(format!(
+        "lambert-estimate-command-missing-{}.toml",
+        std::process::id()
+    ));
+    let missing = missing.to_str().unwrap();
+
+    for command in ["estimate", "analytic"] {
+        user_error(
+            &[command, zero_radius.path(), "--json"],
+            &["emitters[0].radius", "must be positive"],
+        );
+        user_error(
+            &[command, unknown_key.path(), "--json"],
+            &["colour", "unknown field"],
+        );
+        user_error(
+            &[command, inside.path(), "--json"],
+            &["receiver.point", "inside or on the sphere light"],
+        );
+        user_error(&[command, syntax.path(), "--json"], &["line 1"]);
+        user_error(&[command, missing, "--json"], &["cannot read", missing]);
+    }
+    let g = good.path();
+    user_error(
+        &["estimate", g, "--json", "--strategy", "best"],
+        &["--strategy", "unknown strategy \"best\""],
+    );
+    user_error(
+        &["estimate", g, "--json", "--sequence", "halton"],
+        &["--sequence", "unknown sequence \"halton\""],
+    );
+    user_error(
+        &["estimate", g, "--json", "--samples", "0"],
+        &["--samples", "must be at least"],
+    );
+    user_error(
+        &[
+            "estimate",
+            g,
+            "--json",
+            "--samples",
+            "16",
+            "--sequence",
+            "sobol",
+        ],
+        &["--samples", "must be at least 32"],
+    );
+    user_error(
+        &["estimate", g, "--json", "--threads", "0"],
+        &["--threads", "must be at least 1"],
+    );
+    user_error(&["estimate", g, "--json", "--samples", "-3"], &["'-3'"]);
+}
