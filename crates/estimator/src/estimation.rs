@@ -23,7 +23,7 @@ use glam::DVec2;
 use lambert_sampling::{SampleSequence, Sobol, Stratified};
 
 use crate::scene::Scene;
-use crate::statistics::{run_chunked, run_samples, ConfidenceInterval, Estimate, StatisticsError};
+use crate::statistics::{run_chunked, ConfidenceInterval, Estimate, StatisticsError};
 use crate::strategy::{PreparedEmitter, Strategy};
 
 /// Samples per parallel chunk.
@@ -224,13 +224,12 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
             let n_k = config.samples / r + u64::from(k < config.samples % r);
             let seed = mix(config.seed, k);
             let e = match config.sequence {
-                SequenceKind::Sobol => run_samples(
-                    &Sobol::new(seed),
-                    n_k,
-                    CHUNK_SIZE,
-                    config.threads,
-                    |s: &mut Sobol| sample_scene(&prepared, scene, s),
-                )?,
+                SequenceKind::Sobol => {
+                    let seq = Sobol::new(seed);
+                    run_chunked(n_k, CHUNK_SIZE, config.threads, |_, range| {
+                        sequence_chunk(&prepared, scene, &seq, range)
+                    })?
+                }
                 SequenceKind::Stratified => {
                     let strata = u32::try_from(n_k).map_err(|_| EstimateError::Config {
                         field: "samples",
@@ -242,13 +241,9 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
                         field: "samples",
                         problem: e.to_string(),
                     })?;
-                    run_samples(
-                        &seq,
-                        n_k,
-                        CHUNK_SIZE,
-                        config.threads,
-                        |s: &mut Stratified| sample_scene(&prepared, scene, s),
-                    )?
+                    run_chunked(n_k, CHUNK_SIZE, config.threads, |_, range| {
+                        sequence_chunk(&prepared, scene, &seq, range)
+                    })?
                 }
                 SequenceKind::Independent => unreachable!(),
             };
@@ -321,6 +316,41 @@ fn independent_chunk(
             }
         }
         p.evaluate_batch(&scene.receiver, &u, &u2, &mut values);
+    }
+    Estimate::from_values(&values)
+}
+
+/// One chunk of a randomized-QMC estimate: sample i's points are read from
+/// the sequence at index i (each emitter's dimensions in emitter order, as
+/// [`sample_scene`] reads them), buffered, and evaluated emitter by emitter
+/// through [`PreparedEmitter::evaluate_batch`].
+fn sequence_chunk<S: SampleSequence>(
+    prepared: &[PreparedEmitter],
+    scene: &Scene,
+    sequence: &S,
+    range: std::ops::Range<u64>,
+) -> Estimate {
+    let n = (range.end - range.start) as usize;
+    let dims: usize = prepared.iter().map(|p| p.strategy.dimensions()).sum();
+    let mut points = vec![DVec2::ZERO; n * dims];
+    let mut s = sequence.clone();
+    for (j, i) in range.enumerate() {
+        s.start_sample(i);
+        for d in 0..dims {
+            points[d * n + j] = s.next_2d();
+        }
+    }
+    let mut values = vec![0.0f64; n];
+    let mut d = 0;
+    for p in prepared {
+        let u = &points[d * n..(d + 1) * n];
+        let u2 = if p.strategy.dimensions() > 1 {
+            &points[(d + 1) * n..(d + 2) * n]
+        } else {
+            u
+        };
+        p.evaluate_batch(&scene.receiver, u, u2, &mut values);
+        d += p.strategy.dimensions();
     }
     Estimate::from_values(&values)
 }

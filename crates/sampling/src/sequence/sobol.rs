@@ -124,7 +124,18 @@ pub struct Sobol {
     /// Index within the block.
     index: u32,
     dim: u64,
+    /// The block whose keys are cached below.
+    cached_block: Option<u64>,
+    /// hash3(block_seed, slot, TAG) for the first [`KEY_CACHE`] slots: the
+    /// shuffle keys and the scramble keys, which depend on the block and the
+    /// dimension but not on the index, so they are hashed once per block
+    /// instead of once per point (4 hashes per 2-D point saved).
+    shuffle_keys: [u64; KEY_CACHE],
+    scramble_keys: [u64; KEY_CACHE],
 }
+
+/// Dimensions (and shuffle slots) whose hash keys [`Sobol`] caches.
+const KEY_CACHE: usize = 16;
 
 impl Sobol {
     /// Owen-scrambled ([`Scramble::FastOwen`]), index-shuffled, `Global`
@@ -139,6 +150,9 @@ impl Sobol {
             block_seed: 0,
             index: 0,
             dim: 0,
+            cached_block: None,
+            shuffle_keys: [0; KEY_CACHE],
+            scramble_keys: [0; KEY_CACHE],
         };
         s.start_sample(0);
         s
@@ -205,19 +219,25 @@ impl Sobol {
         scramble_slot: u64,
         shuffle: bool,
     ) -> u32 {
+        let cached = self.cached_block == Some(block_seed);
+        let shuffle_key = |slot: u64| match (cached, usize::try_from(slot)) {
+            (true, Ok(k)) if k < KEY_CACHE => self.shuffle_keys[k],
+            _ => hash3(block_seed, slot, TAG_SHUFFLE),
+        };
+        let scramble_key = |slot: u64| match (cached, usize::try_from(slot)) {
+            (true, Ok(k)) if k < KEY_CACHE => self.scramble_keys[k],
+            _ => hash3(block_seed, slot, TAG_SCRAMBLE),
+        };
         let i = if shuffle {
-            let key = hash3(block_seed, shuffle_slot, TAG_SHUFFLE) as u32;
-            laine_karras_permutation(i, key)
+            laine_karras_permutation(i, shuffle_key(shuffle_slot) as u32)
         } else {
             i
         };
         let x = sobol_u32(i, table_dim);
         match self.scramble {
             Scramble::None => x,
-            Scramble::FastOwen => {
-                laine_karras_permutation(x, hash3(block_seed, scramble_slot, TAG_SCRAMBLE) as u32)
-            }
-            Scramble::Owen => owen_scramble(x, hash3(block_seed, scramble_slot, TAG_SCRAMBLE)),
+            Scramble::FastOwen => laine_karras_permutation(x, scramble_key(scramble_slot) as u32),
+            Scramble::Owen => owen_scramble(x, scramble_key(scramble_slot)),
         }
     }
 
@@ -267,6 +287,13 @@ impl SampleSequence for Sobol {
         self.block_seed = hash2(self.seed, index >> 32);
         self.index = index as u32;
         self.dim = 0;
+        if self.cached_block != Some(self.block_seed) {
+            for k in 0..KEY_CACHE {
+                self.shuffle_keys[k] = hash3(self.block_seed, k as u64, TAG_SHUFFLE);
+                self.scramble_keys[k] = hash3(self.block_seed, k as u64, TAG_SCRAMBLE);
+            }
+            self.cached_block = Some(self.block_seed);
+        }
     }
 
     #[inline]
