@@ -1,0 +1,66 @@
+//! Closed-form irradiance from uniform Lambertian emitters, exact in f64 on
+//! the hard cases (tiny and distant lights, grazing receivers, lights
+//! straddling the horizon, receivers almost touching the light).
+//!
+//! Every function is pure, takes plain geometry (`f64`, [`glam::DVec3`])
+//! and computes E(p, n) = ∫_{H²(n)} L(ω) cos θ dω for a one-sided receiver
+//! at point `p` with unit normal `n` (only directions with n·ω > 0 count),
+//! in W/m² when the radiance is in W/(m²·sr). The receiver's plane clips
+//! every light: caps and spheres cut by the horizon, disks and polygons
+//! clipped at n·(x − p) = 0.
+//!
+//! | emitter | function | method |
+//! |---|---|---|
+//! | whole sky | [`sky_irradiance`] | closed form, E = Lπ |
+//! | dome over a tilted receiver | [`dome_irradiance`] | closed form |
+//! | cap of directions (any tilt) | [`sky_cap_irradiance`], [`cap_projected_solid_angle`] | closed form |
+//! | sphere | [`sphere_irradiance`] | closed form (a sphere seen from outside is a cap) |
+//! | disk, coaxial / parallel offset | [`disk_coaxial_irradiance`], [`disk_parallel_offset_irradiance`] | closed form |
+//! | disk, any tilt | [`disk_irradiance`] | closed form when wholly above the horizon; adaptive Gauss–Kronrod over the visible rim when it straddles |
+//! | convex polygon | [`polygon_irradiance`] | closed form (Lambert's formula after clipping) |
+//! | point light | [`point_light_irradiance`] | closed form |
+//! | directional light | [`directional_light_irradiance`] | closed form |
+//!
+//! Sources: J. H. Lambert, *Photometria* (1760), for the polygon formula
+//! and the cosine law; J. Arvo, "Applications of irradiance tensors to the
+//! simulation of non-Lambertian phenomena", SIGGRAPH 1995, for the contour
+//! (Stokes) form E = (L/2) ∮ n·(R × dR)/|R|²; J. Snyder, "Area light sources
+//! for real-time graphics", Microsoft Research MSR-TR-96-11, 1996, for the
+//! cap cut by the horizon; pbrt-v4 for the conventions.
+//!
+//! Inputs are validated: non-finite values, non-unit normals (|n| off 1 by
+//! more than 1e-6), non-positive radii, a receiver inside a sphere, and
+//! polygons that are degenerate, non-planar or non-convex return an
+//! [`AnalyticError`] naming the parameter.
+
+pub mod cap;
+pub mod disk;
+pub mod error;
+pub mod point;
+pub mod polygon;
+pub(crate) mod quadrature;
+pub mod sky;
+pub mod sphere;
+#[cfg(test)]
+pub(crate) mod test_support;
+#[cfg(test)]
+mod tests;
+
+pub use cap::cap_projected_solid_angle;
+pub use disk::{disk_coaxial_irradiance, disk_irradiance, disk_parallel_offset_irradiance};
+pub use error::AnalyticError;
+pub use point::{directional_light_irradiance, point_light_irradiance};
+pub use polygon::{clip_polygon_to_hemisphere, polygon_irradiance};
+pub use sky::{dome_irradiance, sky_cap_irradiance, sky_irradiance};
+pub use sphere::sphere_irradiance;
+
+/// Which faces of a planar emitter (disk, polygon) emit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Emission {
+    /// Only the front face emits: for a disk the side its normal points to,
+    /// for a polygon the side its right-hand-rule normal points to. Seen
+    /// from behind the emitter is dark.
+    OneSided,
+    /// Both faces emit the same radiance.
+    TwoSided,
+}

@@ -1,0 +1,99 @@
+//! Adaptive Gauss–Kronrod (7, 15) quadrature on an interval (Kronrod 1965;
+//! QUADPACK `qk15`, Piessens et al. 1983), bisecting locally until the
+//! Gauss–Kronrod difference is below the tolerance.
+
+const XGK: [f64; 8] = [
+    0.991_455_371_120_812_6,
+    0.949_107_912_342_758_5,
+    0.864_864_423_359_769_1,
+    0.741_531_185_599_394_4,
+    0.586_087_235_467_691_1,
+    0.405_845_151_377_397_2,
+    0.207_784_955_007_898_5,
+    0.0,
+];
+const WGK: [f64; 8] = [
+    0.022_935_322_010_529_22,
+    0.063_092_092_629_978_55,
+    0.104_790_010_322_250_18,
+    0.140_653_259_715_525_92,
+    0.169_004_726_639_267_9,
+    0.190_350_578_064_785_4,
+    0.204_432_940_075_298_9,
+    0.209_482_141_084_727_83,
+];
+/// Gauss weights for the Kronrod nodes of odd index (1, 3, 5) and the centre.
+const WG: [f64; 4] = [
+    0.129_484_966_168_869_7,
+    0.279_705_391_489_276_7,
+    0.381_830_050_505_118_9,
+    0.417_959_183_673_469_4,
+];
+
+/// (Kronrod estimate, Gauss estimate, Kronrod estimate of ∫|f|) on [a, b].
+fn gk15<F: Fn(f64) -> f64>(f: &F, a: f64, b: f64) -> (f64, f64, f64) {
+    let c = 0.5 * (a + b);
+    let h = 0.5 * (b - a);
+    let fc = f(c);
+    let mut k = WGK[7] * fc;
+    let mut g = WG[3] * fc;
+    let mut kabs = WGK[7] * fc.abs();
+    for j in 0..7 {
+        let x = h * XGK[j];
+        let (f1, f2) = (f(c - x), f(c + x));
+        k += WGK[j] * (f1 + f2);
+        kabs += WGK[j] * (f1.abs() + f2.abs());
+        if j % 2 == 1 {
+            g += WG[j / 2] * (f1 + f2);
+        }
+    }
+    (k * h, g * h, kabs * h.abs())
+}
+
+/// ∫_a^b f with local absolute tolerance `rel_tol · ∫|f|` on |K − G| per
+/// subinterval (scaled by √½ per bisection level), to a depth of 60. The
+/// Kronrod estimate's true error is far below |K − G| on smooth pieces
+/// (QUADPACK's estimate is 200|K − G|^{3/2}), so `rel_tol = 1e-14` gives
+/// results accurate to ~1e-16 relative on analytic integrands.
+pub(crate) fn integrate<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) -> f64 {
+    if a == b {
+        return 0.0;
+    }
+    let (k, g, kabs) = gk15(&f, a, b);
+    let tol = rel_tol * kabs.max(f64::MIN_POSITIVE);
+    refine(&f, a, b, (k, g, kabs), tol, 0)
+}
+
+/// Refines [a, b] until |K − G| is below `tol` or below the rounding floor
+/// 50 ε ∫_a^b |f| (beyond which bisection cannot help), to depth 60.
+fn refine<F: Fn(f64) -> f64>(
+    f: &F,
+    a: f64,
+    b: f64,
+    (k, g, kabs): (f64, f64, f64),
+    tol: f64,
+    depth: u32,
+) -> f64 {
+    let m = 0.5 * (a + b);
+    let floor = 50.0 * f64::EPSILON * kabs;
+    if (k - g).abs() <= tol.max(floor) || depth >= 60 || m == a || m == b {
+        return k;
+    }
+    let left = gk15(f, a, m);
+    let right = gk15(f, m, b);
+    let t = tol * std::f64::consts::FRAC_1_SQRT_2;
+    refine(f, a, m, left, t, depth + 1) + refine(f, m, b, right, t, depth + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn integrates_smooth_and_kinked_functions() {
+        let v = super::integrate(f64::exp, 0.0, 1.0, 1e-14);
+        assert!((v - (std::f64::consts::E - 1.0)).abs() < 1e-15);
+        let v = super::integrate(|x: f64| (x - 0.3).abs(), 0.0, 1.0, 1e-14);
+        assert!((v - (0.045 + 0.245)).abs() < 1e-15);
+        let v = super::integrate(|x: f64| x.sqrt(), 0.0, 1.0, 1e-14);
+        assert!((v - 2.0 / 3.0).abs() < 1e-13);
+    }
+}
