@@ -127,8 +127,10 @@ fn json_has_exactly_the_documented_keys() {
     assert_eq!(v["samples"].as_u64(), Some(4096));
     assert!(v["seconds"].as_f64().unwrap() >= 0.0);
     assert!(v["ns_per_sample"].as_f64().unwrap() >= 0.0);
-    // A sphere light has no closed form (yet): analytic, rel_error, z null.
-    assert!(v["analytic"].is_null() && v["rel_error"].is_null() && v["z"].is_null());
+    // Every emitter kind has a closed form: analytic, rel_error and z are
+    // numbers (z is null only when the standard error is 0).
+    assert!(v["analytic"].as_f64().is_some(), "{v}");
+    assert!(v["rel_error"].as_f64().is_some() && v["z"].as_f64().is_some(), "{v}");
 }
 
 #[test]
@@ -275,14 +277,58 @@ fn analytic_gives_sky_plus_point_exactly() {
 }
 
 #[test]
-fn analytic_without_a_closed_form_is_a_user_error() {
-    let scene = TempScene::new("no_closed_form", SPHERE);
+fn analytic_covers_every_emitter_kind() {
+    // One emitter of each kind: each gets a finite closed form, and the
+    // total is their sum.
+    let text = r#"
+[receiver]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+[[emitters]]
+kind = "sky"
+radiance = 0.1
+[[emitters]]
+kind = "sky_cap"
+axis = [1.0, 0.0, 0.3]
+half_angle_deg = 30.0
+radiance = 1.0
+[[emitters]]
+kind = "sphere"
+center = [0.0, 5.0, 8.66]
+radius = 1.0
+radiance = 1.0
+[[emitters]]
+kind = "disk"
+center = [1.0, 0.0, 2.0]
+normal = [0.0, 0.0, -1.0]
+radius = 0.5
+radiance = 1.0
+[[emitters]]
+kind = "polygon"
+vertices = [[-1.0, -1.0, 2.0], [-1.0, 1.0, 2.0], [1.0, 1.0, 2.0]]
+radiance = 1.0
+[[emitters]]
+kind = "point"
+position = [0.0, 0.0, 2.0]
+intensity = 1.0
+[[emitters]]
+kind = "directional"
+direction = [0.0, 1.0, 1.0]
+irradiance = 2.0
+"#;
+    let scene = TempScene::new("every_kind", text);
     let out = lambert(&["analytic", scene.path(), "--json"]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(out.stdout.is_empty());
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("no closed form"), "{err}");
-    assert!(err.contains("emitters[0] (sphere)"), "{err}");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let per: Vec<f64> = v["per_emitter"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e.as_f64().unwrap())
+        .collect();
+    assert_eq!(per.len(), 7);
+    assert!(per.iter().all(|e| e.is_finite() && *e > 0.0), "{per:?}");
+    assert_eq!(v["irradiance"].as_f64().unwrap(), per.iter().sum::<f64>());
 }
 
 /// Exit code 2, an empty stdout and every needle in stderr.

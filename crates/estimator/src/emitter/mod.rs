@@ -142,13 +142,43 @@ impl Emitter {
 }
 
 impl Emitter {
-    /// The closed-form irradiance this emitter gives the receiver, where
-    /// one is implemented (see [`crate::analytic`]); `None` otherwise.
+    /// The closed-form irradiance this emitter gives the receiver
+    /// ([`crate::analytic`]: Lπ for a sky, the cap formula for sky caps and
+    /// spheres, the disk and polygon formulas with clipping at the
+    /// receiver's plane, inverse-square and cosine laws for delta lights);
+    /// `None` only if the analytic function rejects the geometry.
     pub fn closed_form_irradiance(&self, receiver: &Receiver) -> Option<f64> {
+        use crate::analytic::{
+            disk_irradiance, polygon_irradiance, sky_cap_irradiance, sky_irradiance,
+            sphere_irradiance, Emission,
+        };
+        let emission = |two_sided: bool| {
+            if two_sided {
+                Emission::TwoSided
+            } else {
+                Emission::OneSided
+            }
+        };
+        let (p, n) = (receiver.point, receiver.normal);
         match self {
-            Emitter::Sky(s) => Some(s.radiance * std::f64::consts::PI),
+            Emitter::Sky(s) => Some(sky_irradiance(s.radiance)),
+            Emitter::SkyCap(c) => sky_cap_irradiance(c.radiance, n, c.axis, c.half_angle).ok(),
+            Emitter::Sphere(s) => sphere_irradiance(s.radiance, p, n, s.center, s.radius).ok(),
+            Emitter::Disk(d) => disk_irradiance(
+                d.radiance,
+                p,
+                n,
+                d.center,
+                d.normal,
+                d.radius,
+                emission(d.two_sided),
+            )
+            .ok(),
+            Emitter::Polygon(q) => {
+                polygon_irradiance(q.radiance, p, n, &q.polygon.vertices, emission(q.two_sided))
+                    .ok()
+            }
             Emitter::Point(_) | Emitter::Directional(_) => Some(self.delta_irradiance(receiver)),
-            _ => None,
         }
     }
 }
