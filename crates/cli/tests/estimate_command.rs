@@ -130,7 +130,10 @@ fn json_has_exactly_the_documented_keys() {
     // Every emitter kind has a closed form: analytic, rel_error and z are
     // numbers (z is null only when the standard error is 0).
     assert!(v["analytic"].as_f64().is_some(), "{v}");
-    assert!(v["rel_error"].as_f64().is_some() && v["z"].as_f64().is_some(), "{v}");
+    assert!(
+        v["rel_error"].as_f64().is_some() && v["z"].as_f64().is_some(),
+        "{v}"
+    );
 }
 
 #[test]
@@ -318,7 +321,11 @@ irradiance = 2.0
 "#;
     let scene = TempScene::new("every_kind", text);
     let out = lambert(&["analytic", scene.path(), "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let per: Vec<f64> = v["per_emitter"]
         .as_array()

@@ -6,6 +6,7 @@ use lambert_sampling::f64::{
     pdf_area_to_solid_angle, sample_uniform_sphere, UniformDiskArea, UniformTriangle,
 };
 
+use super::discrete::pick_by_cumulative;
 use super::light_sampler::LightDirection;
 use crate::emitter::Emitter;
 use crate::geometry::{ray_convex_polygon, ray_disk, ray_sphere};
@@ -131,13 +132,7 @@ impl AreaSampler {
                 ..
             } => {
                 let total = *cumulative.last()?;
-                let target = u.x * total;
-                let k = cumulative
-                    .partition_point(|&c| c <= target)
-                    .min(triangles.len() - 1);
-                let lo = if k == 0 { 0.0 } else { cumulative[k - 1] };
-                let u0 =
-                    ((target - lo) / (cumulative[k] - lo)).clamp(0.0, 1.0 - f64::EPSILON / 2.0);
+                let (k, u0) = pick_by_cumulative(cumulative, u.x)?;
                 let s = triangles[k].sample(DVec2::new(u0, u.y));
                 (*from, s.point, s.normal, 1.0 / total)
             }

@@ -7,6 +7,7 @@ use lambert_sampling::f64::{
 };
 
 use super::area_sampler::AreaSampler;
+use super::discrete::pick_by_cumulative;
 use crate::emitter::Emitter;
 use crate::receiver::Receiver;
 
@@ -118,16 +119,9 @@ impl LightSampler {
                 triangles,
                 cumulative,
             } => {
-                // Choose a triangle by solid angle with u₀, then reuse the
-                // remainder of u₀ (rescaled to [0, 1)) inside it.
+                // Choose a triangle by solid angle with u₀ and reuse u₀.
                 let total = *cumulative.last()?;
-                let target = u.x * total;
-                let k = cumulative
-                    .partition_point(|&c| c <= target)
-                    .min(triangles.len() - 1);
-                let lo = if k == 0 { 0.0 } else { cumulative[k - 1] };
-                let width = cumulative[k] - lo;
-                let u0 = ((target - lo) / width).clamp(0.0, 1.0 - f64::EPSILON / 2.0);
+                let (k, u0) = pick_by_cumulative(cumulative, u.x)?;
                 let d = triangles[k].sample(DVec2::new(u0, u.y));
                 (d.direction, 1.0 / total)
             }

@@ -20,9 +20,11 @@
 //! per-emitter estimates: unbiased, since each term is.
 
 mod area_sampler;
+mod discrete;
 mod light_sampler;
 
 pub use area_sampler::AreaSampler;
+pub use discrete::pick_by_cumulative;
 pub use light_sampler::{LightDirection, LightSampler};
 
 use std::fmt;
