@@ -22,12 +22,11 @@ pub struct RunOptions {
     pub resume: bool,
 }
 
-/// Runs one row: its M replicate estimates (one thread each; replicates run
-/// in parallel, collected in replicate order) reduced against the scene's
-/// closed form.
-pub fn run_row(config: &StudyConfig, key: &RowKey) -> Result<ResultRow, String> {
+/// Runs one row's M replicate estimates (one thread each; replicates run in
+/// parallel, collected in replicate order).
+pub fn run_replicates(config: &StudyConfig, key: &RowKey) -> Result<Vec<ReplicateResult>, String> {
     let scene = &config.scenes[key.scene];
-    let replicates: Vec<ReplicateResult> = (0..config.replicates)
+    (0..config.replicates)
         .into_par_iter()
         .map(|r| {
             let seed = replicate_seed(
@@ -64,7 +63,13 @@ pub fn run_row(config: &StudyConfig, key: &RowKey) -> Result<ResultRow, String> 
                 sample_variance: report.sample_variance,
             })
         })
-        .collect::<Result<_, String>>()?;
+        .collect()
+}
+
+/// Runs one row: [`run_replicates`] reduced against the scene's closed form.
+pub fn run_row(config: &StudyConfig, key: &RowKey) -> Result<ResultRow, String> {
+    let scene = &config.scenes[key.scene];
+    let replicates = run_replicates(config, key)?;
     Ok(ResultRow {
         row: key.index,
         scene: scene.name.clone(),
