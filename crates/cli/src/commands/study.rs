@@ -19,7 +19,7 @@ pub struct StudyOptions {
     /// The quick built-in study (N up to 2^14; what CI runs).
     #[arg(long, conflicts_with = "study")]
     pub quick: bool,
-    /// Output folder (default: notebooks-data/<study name>).
+    /// Output folder (default: `notebooks-data/<study name>`).
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Run only slice K of N (rows with index % N == K), e.g. 0/4; combine
