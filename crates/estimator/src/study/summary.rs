@@ -209,3 +209,68 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
     }
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::aggregate::RowStats;
+
+    fn row(i: usize, strategy: Strategy, log2_n: u32, rmse: f64) -> ResultRow {
+        ResultRow {
+            row: i,
+            scene: "s".into(),
+            strategy,
+            sequence: SequenceKind::Independent,
+            log2_n,
+            reference: Some(2.0),
+            stats: RowStats {
+                replicates: 4,
+                mean_estimate: 2.0,
+                mean_rel_error: Some(0.0),
+                rmse: Some(rmse),
+                rel_rmse: Some(rmse / 2.0),
+                coverage: Some(1.0),
+                sample_variance: rmse,
+                ns_per_sample: 10.0,
+                efficiency: if rmse > 0.0 { Some(1.0) } else { None },
+            },
+        }
+    }
+
+    #[test]
+    fn groups_fit_and_rank() {
+        // Light: RMSE = 2/√N exactly; cosine: exact.
+        let mut rows = Vec::new();
+        for k in 0..6 {
+            rows.push(row(
+                k as usize,
+                Strategy::Light,
+                k,
+                2.0 / f64::from(1u32 << k).sqrt(),
+            ));
+        }
+        for k in 0..6 {
+            rows.push(row(6 + k as usize, Strategy::CosineHemisphere, k, 0.0));
+        }
+        let g = group_summaries(&rows);
+        assert_eq!(g.len(), 2);
+        match g[0].fit {
+            Some(LogLogFit::Line {
+                slope, slope_se, ..
+            }) => {
+                assert!((slope + 0.5).abs() < 1e-12 && slope_se < 1e-12);
+            }
+            ref other => panic!("{other:?}"),
+        }
+        // 0.1 % of E = 2 is 0.002 = 2/√N → N = 1e6; × 10 ns = 10 ms.
+        assert!((g[0].time_to_target.unwrap() - 1e-2).abs() < 1e-9);
+        assert_eq!(g[1].fit, Some(LogLogFit::Exact));
+        assert_eq!(g[1].time_to_target, Some(0.0));
+        let md = summary_markdown("t", &rows);
+        let cos = md.find("| 1 | cosine-hemisphere").unwrap();
+        let light = md.find("| 2 | light").unwrap();
+        assert!(cos < light, "{md}");
+        assert!(md.contains("-0.500 ± 0.000"), "{md}");
+        assert!(md.contains("| exact | exact |"), "{md}");
+    }
+}
