@@ -62,12 +62,12 @@ fn run_ok(args: &[&str]) {
 #[test]
 fn killed_study_resumes_to_the_same_results() {
     let dir = temp_dir("resume");
-    let study = study_file(&dir, 16);
+    let study = study_file(&dir, 17);
     let full = dir.join("full");
     let cut = dir.join("cut");
     run_ok(&["study", &study, "--out", full.to_str().unwrap(), "--quiet"]);
     let expected = deterministic_rows(&full);
-    assert_eq!(expected.len(), 3 * 3 * 3 * 12);
+    assert_eq!(expected.len(), 3 * 3 * 3 * 13);
 
     // Start the same study and kill it once some rows are written.
     let mut child = Command::new(env!("CARGO_BIN_EXE_lambert"))
