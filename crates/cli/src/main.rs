@@ -18,8 +18,12 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Chi-square tests of every direction warp in both precisions (the
-    /// default job).
+    /// A convergence study: error against N and against time, per scene,
+    /// strategy and sequence (the default job: the built-in study).
+    Study(commands::study::StudyOptions),
+    /// Combine the results of a study's shards into the result of one run.
+    Merge(commands::merge::MergeOptions),
+    /// Chi-square tests of every direction warp in both precisions.
     Validate(commands::validate::ValidateOptions),
     /// Estimate a scene's irradiance by Monte Carlo.
     Estimate(commands::estimate::EstimateOptions),
@@ -43,11 +47,9 @@ fn main() -> ExitCode {
         Some(Command::Validate(options)) => commands::validate::run(&options),
         Some(Command::Estimate(options)) => commands::estimate::run(&options).map(|()| true),
         Some(Command::Analytic(options)) => commands::analytic::run(&options).map(|()| true),
-        None => commands::validate::run(&commands::validate::ValidateOptions {
-            samples: 1_000_000,
-            seed: 20261122,
-            alpha: 0.01,
-        }),
+        Some(Command::Study(options)) => commands::study::run(&options).map(|()| true),
+        Some(Command::Merge(options)) => commands::merge::run(&options).map(|()| true),
+        None => commands::study::run(&commands::study::StudyOptions::default()).map(|()| true),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,

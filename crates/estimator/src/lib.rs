@@ -19,6 +19,7 @@ pub mod receiver;
 pub mod scene;
 pub mod statistics;
 pub mod strategy;
+pub mod study;
 
 pub use emitter::{Emitter, EmitterError};
 pub use receiver::Receiver;

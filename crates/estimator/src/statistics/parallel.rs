@@ -75,15 +75,25 @@ where
     if threads == 0 {
         return Err(StatisticsError::ZeroThreads);
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| StatisticsError::ThreadPool(e.to_string()))?;
     let chunks = total_samples.div_ceil(chunk_size);
     let range_of = |k: u64| {
         let start = k * chunk_size;
         start..start.saturating_add(chunk_size).min(total_samples)
     };
+    if threads == 1 {
+        // One thread: run the chunks inline, in order (the same merge order
+        // as below, so the same bits), without building a thread pool —
+        // which costs more than a small estimate (studies run thousands).
+        let mut total = Estimate::new();
+        for k in 0..chunks {
+            total.merge(&chunk(k, range_of(k)));
+        }
+        return Ok(total);
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| StatisticsError::ThreadPool(e.to_string()))?;
     let mut total = Estimate::new();
     pool.install(|| {
         let mut first = 0;
