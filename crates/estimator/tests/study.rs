@@ -3,8 +3,8 @@
 //! Carlo (−½) and Owen-scrambled Sobol (steeper than −¾) on smooth scenes,
 //! each with a negative control that the same check rejects.
 //!
-//! Deterministic (fixed seeds). Only scenes whose emitters all have closed
-//! forms on every branch (sky, point, directional) are used.
+//! Deterministic (fixed seeds). Coverage runs over the whole built-in
+//! suite; the slopes over the smooth scenes.
 
 use lambert_estimator::estimation::SequenceKind;
 use lambert_estimator::strategy::Strategy;
@@ -43,9 +43,23 @@ fn binomial_band(k: u64, p: f64, alpha: f64) -> (u64, u64) {
     (lo, hi)
 }
 
-/// Coverage of the quick study's independent-MC rows on the smooth scenes,
-/// N ≥ 64, rows with non-zero variance: (covered, total) at the truth and at
-/// a truth scaled by `shift`.
+/// Whether the central limit theorem describes an estimator at N samples:
+/// the hemisphere strategies see the α = 0.01 rad disk (3e-4 sr) in about
+/// N·1e-4 samples, a handful even at N = 2^14, so their intervals cannot
+/// cover at 99 %; every other pair of the suite sees its light in a fixed
+/// fraction of its samples.
+fn clt_applies(scene: &str, strategy: Strategy) -> bool {
+    !(scene == "disk-coaxial-small"
+        && matches!(
+            strategy,
+            Strategy::UniformHemisphere | Strategy::CosineHemisphere
+        ))
+}
+
+/// Coverage of the quick study's independent-MC rows over the whole
+/// built-in suite, N ≥ 2^10 (where every remaining estimator's skewness has
+/// faded enough for a normal interval), rows with non-zero variance:
+/// (covered, total) at the truth and at a truth scaled by `shift`.
 fn quick_independent_coverage(shift: f64) -> (u64, u64) {
     let config = StudyConfig::quick();
     let mut covered = 0;
@@ -53,12 +67,12 @@ fn quick_independent_coverage(shift: f64) -> (u64, u64) {
     for key in plan(&config) {
         let scene = &config.scenes[key.scene];
         if key.sequence != SequenceKind::Independent
-            || key.log2_n < 6
-            || !SMOOTH.contains(&scene.name.as_str())
+            || key.log2_n < 10
+            || !clt_applies(&scene.name, key.strategy)
         {
             continue;
         }
-        let truth = scene.reference.expect("smooth scenes have a closed form") * shift;
+        let truth = scene.reference.expect("built-in scenes have closed forms") * shift;
         let reps = run_replicates(&config, &key).unwrap();
         let stats = aggregate(Some(truth), &reps);
         if stats.sample_variance == 0.0 {
@@ -86,6 +100,7 @@ fn ci99_coverage_within_binomial_band() {
     let (covered, total) = quick_independent_coverage(1.0);
     let misses = total - covered;
     let (lo, hi) = binomial_band(total, 0.01, 0.001);
+    eprintln!("{misses} misses of {total} intervals, band {lo}..={hi}");
     assert!(total >= 400, "{total} intervals");
     assert!(
         (lo..=hi).contains(&misses),
