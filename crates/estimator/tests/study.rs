@@ -12,8 +12,6 @@ use lambert_estimator::study::{
     aggregate, fit_loglog, plan, run_replicates, LogLogFit, StudyConfig, StudyScene,
 };
 
-/// The smooth scenes with a closed form on every branch.
-const SMOOTH: [&str; 2] = ["uniform-sky", "directional-and-sky"];
 
 /// The two-sided binomial acceptance band [lo, hi] for X ~ Bin(k, p) at
 /// level alpha: the largest lo with P(X < lo) ≤ α/2 and the smallest hi
