@@ -12,7 +12,6 @@ use lambert_estimator::study::{
     aggregate, fit_loglog, plan, run_replicates, LogLogFit, StudyConfig, StudyScene,
 };
 
-
 /// The two-sided binomial acceptance band [lo, hi] for X ~ Bin(k, p) at
 /// level alpha: the largest lo with P(X < lo) ≤ α/2 and the smallest hi
 /// with P(X > hi) ≤ α/2 (pmf summed exactly in f64).

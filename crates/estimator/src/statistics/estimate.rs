@@ -147,16 +147,34 @@ impl Estimate {
     /// the result merges like any other estimate. Non-finite values are
     /// counted in [`non_finite`](Estimate::non_finite).
     pub fn from_values(values: &[f64]) -> Estimate {
-        let mut sum = NeumaierSum::new();
+        // Four interleaved compensated sums, merged in a fixed order: the
+        // same accuracy as one, without one long dependency chain.
+        const LANES: usize = 4;
+        let mut lanes = [NeumaierSum::new(); LANES];
         let mut n = 0u64;
         let mut non_finite = 0u64;
-        for &x in values {
+        let mut blocks = values.chunks_exact(LANES);
+        for block in blocks.by_ref() {
+            for (lane, &x) in lanes.iter_mut().zip(block) {
+                if x.is_finite() {
+                    lane.add(x);
+                    n += 1;
+                } else {
+                    non_finite += 1;
+                }
+            }
+        }
+        for (lane, &x) in lanes.iter_mut().zip(blocks.remainder()) {
             if x.is_finite() {
-                sum.add(x);
+                lane.add(x);
                 n += 1;
             } else {
                 non_finite += 1;
             }
+        }
+        let mut sum = lanes[0];
+        for lane in &lanes[1..] {
+            sum.merge(lane);
         }
         if n == 0 {
             return Estimate {
@@ -165,12 +183,25 @@ impl Estimate {
             };
         }
         let (mean_hi, mean_lo) = split_mean(&sum, n);
-        let mut m2 = NeumaierSum::new();
-        for &x in values {
+        let mut squares = [NeumaierSum::new(); LANES];
+        let mut blocks = values.chunks_exact(LANES);
+        for block in blocks.by_ref() {
+            for (lane, &x) in squares.iter_mut().zip(block) {
+                if x.is_finite() {
+                    let d = (x - mean_hi) - mean_lo;
+                    lane.add(d * d);
+                }
+            }
+        }
+        for (lane, &x) in squares.iter_mut().zip(blocks.remainder()) {
             if x.is_finite() {
                 let d = (x - mean_hi) - mean_lo;
-                m2.add(d * d);
+                lane.add(d * d);
             }
+        }
+        let mut m2 = squares[0];
+        for lane in &squares[1..] {
+            m2.merge(lane);
         }
         Estimate {
             n,
