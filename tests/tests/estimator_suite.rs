@@ -5,7 +5,7 @@
 //! and the negative controls the same tests must reject.
 
 use glam::DVec2;
-use lambert_estimator::builtin::builtin_scenes;
+use lambert_estimator::builtin::{builtin_scenes, clt_applies};
 use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind, RQMC_REPLICATES};
 use lambert_estimator::goodness_of_fit::sidak_level;
 use lambert_estimator::strategy::{LightSampler, Strategy};
@@ -48,22 +48,6 @@ fn config(strategy: Strategy, sequence: SequenceKind, seed: u64) -> EstimateConf
         seed,
         threads: 2,
     }
-}
-
-/// Whether a (scene, strategy) pair gives an estimator whose mean the CLT
-/// describes at 2^18 samples: uniform and cosine hemisphere sampling hit a
-/// light of solid angle 3e-4 sr (the α = 0.01 disk) about 80 times in 2^18
-/// samples, a count too small for a normal z; MIS with the balance heuristic
-/// carries ≈ 1e-4 of E in the same rare hits. The pairs still run (and must
-/// be finite), but are judged by the light strategies instead.
-fn clt_applies(scene: &str, strategy: Strategy) -> bool {
-    !(scene == "disk-coaxial-small"
-        && matches!(
-            strategy,
-            Strategy::UniformHemisphere
-                | Strategy::CosineHemisphere
-                | Strategy::Mis(lambert_estimator::strategy::Heuristic::Balance)
-        ))
 }
 
 #[test]

@@ -6,6 +6,7 @@
 //! Deterministic (fixed seeds). Coverage runs over the whole built-in
 //! suite; the slopes over the smooth scenes.
 
+use lambert_estimator::builtin::clt_applies;
 use lambert_estimator::estimation::SequenceKind;
 use lambert_estimator::strategy::Strategy;
 use lambert_estimator::study::{
@@ -38,25 +39,6 @@ fn binomial_band(k: u64, p: f64, alpha: f64) -> (u64, u64) {
         hi -= 1;
     }
     (lo, hi)
-}
-
-/// Whether the central limit theorem describes an estimator at N samples:
-/// the hemisphere strategies see the α = 0.01 rad disk (3e-4 sr) in about
-/// N·1e-4 samples, a handful even at N = 2^14, so their intervals cannot
-/// cover at 99 %. MIS with the balance heuristic has the same rare-event
-/// part there: its cosine half carries p_c/(p_c + p_light) ≈ 1e-4 of E in
-/// hits that happen in ≈ 1e-4 of the samples, a skewed term as large as the
-/// standard error at these N (measured: 25 misses in 72 intervals); the
-/// power heuristic squares that weight away. Every other pair of the suite
-/// sees its light in a fixed fraction of its samples.
-fn clt_applies(scene: &str, strategy: Strategy) -> bool {
-    !(scene == "disk-coaxial-small"
-        && matches!(
-            strategy,
-            Strategy::UniformHemisphere
-                | Strategy::CosineHemisphere
-                | Strategy::Mis(lambert_estimator::strategy::Heuristic::Balance)
-        ))
 }
 
 /// Coverage of the quick study's independent-MC rows over the whole

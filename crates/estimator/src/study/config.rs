@@ -28,7 +28,7 @@ use serde::Deserialize;
 use crate::builtin::builtin_scenes;
 use crate::estimation::SequenceKind;
 use crate::scene::Scene;
-use crate::strategy::{Heuristic, Strategy};
+use crate::strategy::Strategy;
 
 /// A scene of a study, with its name and its closed-form irradiance.
 #[derive(Clone, Debug)]
@@ -93,14 +93,7 @@ impl fmt::Display for StudyError {
 impl std::error::Error for StudyError {}
 
 /// The strategies of the built-in study.
-pub const BUILTIN_STRATEGIES: [Strategy; 6] = [
-    Strategy::UniformHemisphere,
-    Strategy::CosineHemisphere,
-    Strategy::Light,
-    Strategy::Area,
-    Strategy::Mis(Heuristic::Balance),
-    Strategy::Mis(Heuristic::Power),
-];
+pub const BUILTIN_STRATEGIES: [Strategy; 6] = Strategy::ALL;
 
 /// The built-in study's seed.
 pub const BUILTIN_SEED: u64 = 20261122;
