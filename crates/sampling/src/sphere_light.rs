@@ -175,3 +175,42 @@ macro_rules! sphere_light_impl {
 }
 
 crate::precision::both_precisions!(sphere_light_impl);
+
+#[cfg(test)]
+mod tests {
+    use super::f64::SphereSolidAngle;
+    use crate::SamplingError;
+    use glam::{DVec2, DVec3};
+
+    #[test]
+    fn points_lie_on_the_near_side_at_the_reported_distance() {
+        let center = DVec3::new(3.0, -1.0, 8.0);
+        let s = SphereSolidAngle::new(DVec3::ZERO, center, 1.5).unwrap();
+        for i in 0..=16 {
+            for j in 0..=16 {
+                let u = DVec2::new(i as f64 / 16.0, j as f64 / 16.0);
+                let l = s.sample(u);
+                // On the sphere and along the direction, to a few ulps of
+                // the scene's size (|center| ≈ 8.6).
+                assert!(((l.point - center).length() - 1.5).abs() < 1e-13, "{u}");
+                assert!((l.direction * l.distance - l.point).length() < 1e-12, "{u}");
+                // The near side: the surface faces the reference point.
+                assert!((l.point - center).dot(-l.point) >= -1e-12, "{u}");
+            }
+        }
+    }
+
+    #[test]
+    fn inside_or_on_the_sphere_is_a_clear_error() {
+        let on = SphereSolidAngle::new(DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0), 2.0);
+        assert!(matches!(on, Err(SamplingError::InsideLight { .. })));
+        let inside = SphereSolidAngle::new(DVec3::ZERO, DVec3::new(0.0, 0.0, 1.0), 2.0);
+        let e = inside.unwrap_err();
+        assert!(
+            e.to_string().contains("inside or on the sphere light"),
+            "{e}"
+        );
+        assert!(SphereSolidAngle::new(DVec3::ZERO, DVec3::Z * 5.0, -1.0).is_err());
+        assert!(SphereSolidAngle::new(DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 5.0), 1.0).is_err());
+    }
+}

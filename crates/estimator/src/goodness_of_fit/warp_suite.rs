@@ -195,6 +195,16 @@ pub fn direction_cases() -> Vec<Case> {
         },
         Case {
             f32_resolvable: true,
+            label: "sph. rectangle sliver",
+            // 2 × 0.001 at distance 2: aspect 2000.
+            spec: DirectionWarpSpec::SphericalRectangle {
+                corner: DVec3::new(-1.0, 0.3, 2.0),
+                edge0: DVec3::new(2.0, 0.0, 0.0),
+                edge1: DVec3::new(0.0, 0.001, 0.0),
+            },
+        },
+        Case {
+            f32_resolvable: true,
             label: "sph. rectangle huge",
             spec: DirectionWarpSpec::SphericalRectangle {
                 corner: DVec3::new(-50.0, -50.0, 0.5),
