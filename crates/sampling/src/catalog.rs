@@ -225,26 +225,6 @@ macro_rules! catalog_impl {
     () => {
         use glam::{DVec2, DVec3};
 
-        #[inline]
-        fn narrow2(u: DVec2) -> V2 {
-            V2::new(u.x as Real, u.y as Real)
-        }
-
-        #[inline]
-        fn narrow3(w: DVec3) -> V3 {
-            V3::new(w.x as Real, w.y as Real, w.z as Real)
-        }
-
-        #[inline]
-        fn wide2(u: V2) -> DVec2 {
-            DVec2::new(u.x as f64, u.y as f64)
-        }
-
-        #[inline]
-        fn wide3(w: V3) -> DVec3 {
-            DVec3::new(w.x as f64, w.y as f64, w.z as f64)
-        }
-
         enum Built {
             UniformHemisphere,
             CosineHemisphere,

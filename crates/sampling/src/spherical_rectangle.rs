@@ -559,15 +559,9 @@ mod tests {
                 use crate::precision::$m::*;
                 use crate::$m::*;
 
-                fn v(x: DVec3) -> V3 {
-                    V3::new(x.x as Real, x.y as Real, x.z as Real)
-                }
-                fn wide(x: V3) -> DVec3 {
-                    DVec3::new(x.x as f64, x.y as f64, x.z as f64)
-                }
                 fn case(g: [DVec3; 4]) -> ([V3; 4], [DVec3; 4]) {
-                    let r = g.map(v);
-                    (r, r.map(wide))
+                    let r = g.map(narrow3);
+                    (r, r.map(wide3))
                 }
                 const EPS: f64 = Real::EPSILON as f64;
                 fn skip(name: &str) -> bool {
@@ -728,7 +722,7 @@ mod tests {
                         let tol = 64.0 * EPS * (1.0 + rho / d);
                         let mut worst: f64 = 0.0;
                         for u in grid(21, 0.0, 1.0) {
-                            let a = wide(sr.sample(u).direction);
+                            let a = wide3(sr.sample(u).direction);
                             let b = r64.sample(DVec2::new(u.x as f64, u.y as f64)).direction;
                             worst = worst.max((a - b).length());
                         }
@@ -765,7 +759,7 @@ mod tests {
                                 let u0: Real = rng.random();
                                 let u1: Real = rng.random();
                                 let u = V2::new(u0, u1.powf(skew as Real));
-                                if sub.contains(wide(sr.sample(u).direction)) {
+                                if sub.contains(wide3(sr.sample(u).direction)) {
                                     hits += 1;
                                 }
                             }

@@ -530,17 +530,11 @@ mod tests {
                 use crate::precision::$m::*;
                 use crate::$m::*;
 
-                fn v(x: DVec3) -> V3 {
-                    V3::new(x.x as Real, x.y as Real, x.z as Real)
-                }
-                fn wide(x: V3) -> DVec3 {
-                    DVec3::new(x.x as f64, x.y as f64, x.z as f64)
-                }
                 /// The case rounded to this precision, and widened back (so
                 /// f64 references see exactly the same inputs).
                 fn case(g: [DVec3; 4]) -> ([V3; 4], [DVec3; 4]) {
-                    let r = g.map(v);
-                    (r, r.map(wide))
+                    let r = g.map(narrow3);
+                    (r, r.map(wide3))
                 }
                 const EPS: f64 = Real::EPSILON as f64;
                 /// Longest chord between vertex directions, radians-ish.
@@ -679,7 +673,7 @@ mod tests {
                         let tol = 64.0 * EPS * (1.0 + c * c / t64.solid_angle());
                         let mut worst: f64 = 0.0;
                         for u in grid(21, 0.0, 1.0) {
-                            let a = wide(tri.sample(u).direction);
+                            let a = wide3(tri.sample(u).direction);
                             let b = t64
                                 .sample(glam::DVec2::new(u.x as f64, u.y as f64))
                                 .direction;
@@ -720,7 +714,7 @@ mod tests {
                             for _ in 0..n {
                                 let u0: Real = rng.random();
                                 let u = V2::new(u0.powf(skew as Real), rng.random());
-                                if sub.contains(wide(tri.sample(u).direction)) {
+                                if sub.contains(wide3(tri.sample(u).direction)) {
                                     hits += 1;
                                 }
                             }
