@@ -8,10 +8,10 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::DVec3;
 use lambert_benches::config;
-use lambert_estimator::emitter::SphereLight;
 use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind};
 use lambert_estimator::strategy::Strategy;
-use lambert_estimator::{Emitter, Receiver, Scene};
+use lambert_light::emitter::SphereLight;
+use lambert_light::{Emitter, Receiver, Scene};
 
 const SAMPLES: u64 = 1 << 20;
 

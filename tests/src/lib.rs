@@ -1,12 +1,12 @@
 //! Cross-crate validation suites for lambert; the suites live in `tests/`.
 //! The catalogue of cases is the estimator's
-//! [`warp_suite`](lambert_estimator::goodness_of_fit::warp_suite); this
+//! [`warp_suite`](lambert_validate::warp_suite); this
 //! library adds what only the property tests need.
 
 use glam::DVec3;
-use lambert_sampling::catalog::DirectionWarpSpec;
+use lambert_validate::catalog::DirectionWarpSpec;
 
-pub use lambert_estimator::goodness_of_fit::warp_suite::*;
+pub use lambert_validate::warp_suite::*;
 
 /// Samples on and near the edges of the unit square: 0, tiny, interior,
 /// 1 − ε (for f64 and for f32) and exactly 1.

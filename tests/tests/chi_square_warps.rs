@@ -7,12 +7,12 @@
 //! is α = 0.01, so each runs at the Šidák level 1 − (1 − α)^(1/m).
 
 use glam::DVec3;
-use lambert_estimator::goodness_of_fit::{sidak_level, Binning, ChiSquareTest};
-use lambert_sampling::catalog::{DirectionWarpSpec, Precision};
 use lambert_sampling::{Independent, SampleSequence};
 use lambert_tests::{
     binning_for, chi_square, one_minus_cos, partition_for, run_case, runs, CHI_SQUARE_SAMPLES,
 };
+use lambert_validate::catalog::{DirectionWarpSpec, Precision};
+use lambert_validate::{sidak_level, Binning, ChiSquareTest};
 
 const FAMILY_ALPHA: f64 = 0.01;
 const SEED: u64 = 20261122;
@@ -122,7 +122,7 @@ fn rejects_half_circle_azimuths() {
     let warp = DirectionWarpSpec::UniformSphere
         .build(Precision::F64)
         .unwrap();
-    let outcome = lambert_estimator::goodness_of_fit::ChiSquareTest::new(Binning::Sphere {
+    let outcome = lambert_validate::ChiSquareTest::new(Binning::Sphere {
         theta_bins: 20,
         phi_bins: 40,
     })

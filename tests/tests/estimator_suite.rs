@@ -5,11 +5,13 @@
 //! and the negative controls the same tests must reject.
 
 use glam::DVec2;
-use lambert_estimator::builtin::{builtin_scenes, clt_applies};
+use lambert_estimator::clt::clt_applies;
 use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind, RQMC_REPLICATES};
-use lambert_estimator::goodness_of_fit::sidak_level;
 use lambert_estimator::strategy::{LightSampler, Strategy};
-use lambert_estimator::{run_chunked, Emitter, Estimate, Scene};
+use lambert_estimator::{run_chunked, Estimate};
+use lambert_light::builtin::builtin_scenes;
+use lambert_light::{Emitter, Scene};
+use lambert_validate::sidak_level;
 use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
 
 const FAMILY_ALPHA: f64 = 0.01;

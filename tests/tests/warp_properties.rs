@@ -4,8 +4,8 @@
 //! samples back to u; f32 agrees with f64 on hard cases.
 
 use glam::DVec2;
-use lambert_sampling::catalog::{DirectionWarpSpec, Precision};
 use lambert_tests::{conditioning, direction_cases, edge_values};
+use lambert_validate::catalog::{DirectionWarpSpec, Precision};
 
 fn eps(p: Precision) -> f64 {
     match p {

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
-use lambert_estimator::study::read_results;
+use lambert_study::read_results;
 
 fn lambert(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_lambert"))

@@ -22,9 +22,9 @@ use std::time::Instant;
 use glam::DVec2;
 use lambert_sampling::{SampleSequence, Sobol, Stratified};
 
-use crate::scene::Scene;
 use crate::statistics::{run_chunked, ConfidenceInterval, Estimate, StatisticsError};
 use crate::strategy::{PreparedEmitter, Strategy};
+use lambert_light::scene::Scene;
 
 /// Samples per parallel chunk.
 pub const CHUNK_SIZE: u64 = 4096;

@@ -26,7 +26,6 @@
 pub(crate) mod precision;
 
 pub mod area;
-pub mod catalog;
 pub mod cone;
 pub mod direction_sample;
 pub mod disk;

@@ -26,27 +26,17 @@ pub(crate) mod f64 {
     pub fn widen(v: V3) -> [f64; 3] {
         [v.x as f64, v.y as f64, v.z as f64]
     }
-    /// `u` rounded to this precision.
-    #[inline]
-    #[allow(clippy::unnecessary_cast)]
-    pub fn narrow2(u: glam::DVec2) -> V2 {
-        V2::new(u.x as Real, u.y as Real)
-    }
     /// `w` rounded to this precision.
     #[inline]
     #[allow(clippy::unnecessary_cast)]
+    #[cfg_attr(not(test), allow(dead_code))] // the spherical-polygon tests
     pub fn narrow3(w: glam::DVec3) -> V3 {
         V3::new(w.x as Real, w.y as Real, w.z as Real)
-    }
-    /// `u` widened to f64 (exact).
-    #[inline]
-    #[allow(clippy::unnecessary_cast)]
-    pub fn wide2(u: V2) -> glam::DVec2 {
-        glam::DVec2::new(u.x as f64, u.y as f64)
     }
     /// `w` widened to f64 (exact).
     #[inline]
     #[allow(clippy::unnecessary_cast)]
+    #[cfg_attr(not(test), allow(dead_code))] // the spherical-polygon tests
     pub fn wide3(w: V3) -> glam::DVec3 {
         glam::DVec3::new(w.x as f64, w.y as f64, w.z as f64)
     }
@@ -94,27 +84,17 @@ pub(crate) mod f32 {
     pub fn widen(v: V3) -> [f64; 3] {
         [v.x as f64, v.y as f64, v.z as f64]
     }
-    /// `u` rounded to this precision.
-    #[inline]
-    #[allow(clippy::unnecessary_cast)]
-    pub fn narrow2(u: glam::DVec2) -> V2 {
-        V2::new(u.x as Real, u.y as Real)
-    }
     /// `w` rounded to this precision.
     #[inline]
     #[allow(clippy::unnecessary_cast)]
+    #[cfg_attr(not(test), allow(dead_code))] // the spherical-polygon tests
     pub fn narrow3(w: glam::DVec3) -> V3 {
         V3::new(w.x as Real, w.y as Real, w.z as Real)
-    }
-    /// `u` widened to f64 (exact).
-    #[inline]
-    #[allow(clippy::unnecessary_cast)]
-    pub fn wide2(u: V2) -> glam::DVec2 {
-        glam::DVec2::new(u.x as f64, u.y as f64)
     }
     /// `w` widened to f64 (exact).
     #[inline]
     #[allow(clippy::unnecessary_cast)]
+    #[cfg_attr(not(test), allow(dead_code))] // the spherical-polygon tests
     pub fn wide3(w: V3) -> glam::DVec3 {
         glam::DVec3::new(w.x as f64, w.y as f64, w.z as f64)
     }

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use lambert_estimator::Scene;
+use lambert_light::Scene;
 use serde_json::json;
 
 /// Options of `lambert analytic`.

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::Args;
 use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind};
 use lambert_estimator::strategy::Strategy;
-use lambert_estimator::Scene;
+use lambert_light::Scene;
 use serde_json::json;
 
 use super::analytic::closed_form;

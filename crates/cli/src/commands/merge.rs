@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use clap::Args;
-use lambert_estimator::study::results::write_results;
-use lambert_estimator::study::{read_results, summary_markdown, ResultRow};
+use lambert_study::results::write_results;
+use lambert_study::{read_results, summary_markdown, ResultRow};
 
 /// Options of `lambert merge`.
 #[derive(Args, Debug, Clone)]

@@ -3,7 +3,6 @@
 pub mod analytic;
 pub mod estimate;
 pub mod merge;
-pub mod plot;
 pub mod sample;
 pub mod study;
 pub mod validate;

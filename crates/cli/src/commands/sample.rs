@@ -6,8 +6,8 @@ use std::io::{self, BufWriter, Write};
 
 use clap::{Args, Subcommand, ValueEnum};
 use glam::DVec3;
-use lambert_sampling::catalog::{DirectionWarpSpec, Precision};
 use lambert_sampling::{Independent, SampleSequence};
+use lambert_validate::catalog::{DirectionWarpSpec, Precision};
 
 use crate::parse;
 

@@ -7,9 +7,7 @@ use std::time::Instant;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use lambert_estimator::study::{plan, run_study, summary_markdown, RunOptions, Shard, StudyConfig};
-
-use super::plot;
+use lambert_study::{plan, plot, run_study, summary_markdown, RunOptions, Shard, StudyConfig};
 
 /// Options of `lambert study`.
 #[derive(Args, Debug, Clone, Default)]
@@ -110,7 +108,7 @@ pub fn run(options: &StudyOptions) -> Result<(), String> {
 pub fn write_outputs(
     out: &Path,
     summary: &str,
-    rows: &[lambert_estimator::study::results::ResultRow],
+    rows: &[lambert_study::results::ResultRow],
 ) -> Result<(), String> {
     let path = out.join("summary.md");
     std::fs::write(&path, summary).map_err(|e| format!("cannot write {}: {e}", path.display()))?;

@@ -4,8 +4,8 @@
 use std::time::Instant;
 
 use clap::Args;
-use lambert_estimator::goodness_of_fit::sidak_level;
-use lambert_estimator::goodness_of_fit::warp_suite::{partition_for, run_case, runs};
+use lambert_validate::sidak_level;
+use lambert_validate::warp_suite::{partition_for, run_case, runs};
 
 /// Options of `lambert validate`.
 #[derive(Args, Debug, Clone)]

@@ -8,9 +8,9 @@ use lambert_sampling::f64::{
 
 use super::discrete::pick_by_cumulative;
 use super::light_sampler::LightDirection;
-use crate::emitter::Emitter;
-use crate::geometry::{ray_convex_polygon, ray_disk, ray_sphere};
-use crate::receiver::Receiver;
+use lambert_geometry::{ray_convex_polygon, ray_disk, ray_sphere};
+use lambert_light::emitter::Emitter;
+use lambert_light::receiver::Receiver;
 
 /// Uniform area sampling of a sphere's whole surface, a disk, or a convex
 /// polygon (a fan of triangles chosen by area).
@@ -48,7 +48,7 @@ pub enum AreaSampler {
         /// Cumulative areas, last = total.
         cumulative: Vec<f64>,
         /// The polygon (for the inverse query).
-        polygon: crate::geometry::ConvexPolygon,
+        polygon: lambert_geometry::ConvexPolygon,
     },
     /// The emitter has no area (sky, cap, delta).
     None,

@@ -8,8 +8,8 @@ use lambert_sampling::f64::{
 
 use super::area_sampler::AreaSampler;
 use super::discrete::pick_by_cumulative;
-use crate::emitter::Emitter;
-use crate::receiver::Receiver;
+use lambert_light::emitter::Emitter;
+use lambert_light::receiver::Receiver;
 
 /// A direction toward a light with its density per steradian.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -37,8 +37,8 @@ use lambert_sampling::f64::{
 };
 use lambert_sampling::SampleSequence;
 
-use crate::emitter::Emitter;
-use crate::receiver::Receiver;
+use lambert_light::emitter::Emitter;
+use lambert_light::receiver::Receiver;
 
 /// How to combine the two samples of MIS.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -1,0 +1,165 @@
+//! A uniform planar convex polygon light (one- or two-sided): Lambert's
+//! formula after clipping at the receiver's plane.
+//!
+//! Lambert (1760): for a polygon whose directions lie in the receiver's
+//! hemisphere, E = (L/2) Σᵢ Γᵢ·n with Γᵢ = θᵢ unit(Rᵢ × Rᵢ₊₁),
+//! Rᵢ = vᵢ − p and θᵢ = atan2(|Rᵢ × Rᵢ₊₁|, Rᵢ·Rᵢ₊₁), the angle between
+//! Rᵢ and Rᵢ₊₁ (the atan2 keeps tiny and near-π angles exact, unlike
+//! acos of the normalised dot product); Arvo (1995) derives it as the
+//! contour form of the irradiance tensor. Rᵢ × Rᵢ₊₁ is evaluated as
+//! Rᵢ × (vᵢ₊₁ − vᵢ), which is the same vector without the cancellation of
+//! two long nearly parallel vectors. The sum's sign depends on the
+//! polygon's orientation as seen from p; its absolute value is taken.
+//!
+//! The polygon is first clipped against n·(x − p) > 0 (Sutherland &
+//! Hodgman, "Reentrant polygon clipping", CACM 17(1), 1974); a convex
+//! polygon stays convex. Accuracy: each term is of size ℓ/D (ℓ the edge
+//! length, D the distance), the sum of size (ℓ/D)² cos θ, so about
+//! log₁₀(D/ℓ) digits are lost to rounding for lights far away relative to
+//! their size (≈ 1e-10 relative at D/ℓ = 1e6; measured in the tests).
+
+use super::error::{finite, finite3, unit, AnalyticError};
+use super::Emission;
+use glam::DVec3;
+
+/// Relative tolerance of the planarity and convexity checks.
+const SHAPE_TOLERANCE: f64 = 1e-9;
+
+/// The part of the polygon `vertices` with n·(x − p) > 0 (Sutherland–
+/// Hodgman against the receiver's plane through `p` with normal `n`).
+/// Vertices on the plane are kept; crossing edges are cut at
+/// vᵢ + (vⱼ − vᵢ) dᵢ/(dᵢ − dⱼ), dᵢ = n·(vᵢ − p).
+pub fn clip_polygon_to_hemisphere(p: DVec3, n: DVec3, vertices: &[DVec3]) -> Vec<DVec3> {
+    let k = vertices.len();
+    let mut out = Vec::with_capacity(k + 1);
+    for i in 0..k {
+        let (a, b) = (vertices[i], vertices[(i + 1) % k]);
+        let (da, db) = (n.dot(a - p), n.dot(b - p));
+        if da >= 0.0 {
+            out.push(a);
+        }
+        if (da > 0.0 && db < 0.0) || (da < 0.0 && db > 0.0) {
+            out.push(a + (b - a) * (da / (da - db)));
+        }
+    }
+    out
+}
+
+/// Checks that the polygon has ≥ 3 finite vertices and is planar and
+/// convex; returns its right-hand-rule unit normal (Newell's method).
+pub(crate) fn polygon_normal(vertices: &[DVec3]) -> Result<DVec3, AnalyticError> {
+    if vertices.len() < 3 {
+        return Err(AnalyticError::BadPolygon {
+            reason: "fewer than 3 vertices",
+        });
+    }
+    for &v in vertices {
+        finite3("vertices", v)?;
+    }
+    let k = vertices.len();
+    let origin = vertices[0];
+    let mut area = DVec3::ZERO;
+    let mut size: f64 = 0.0;
+    for i in 0..k {
+        let (a, b) = (vertices[i] - origin, vertices[(i + 1) % k] - origin);
+        area += a.cross(b);
+        size = size.max(a.length());
+    }
+    let len = area.length();
+    if !(len > 0.0) || !(len > 1e-300 * size * size) {
+        return Err(AnalyticError::BadPolygon {
+            reason: "zero area",
+        });
+    }
+    let normal = area / len;
+    for &v in vertices {
+        if normal.dot(v - origin).abs() > SHAPE_TOLERANCE * size {
+            return Err(AnalyticError::BadPolygon {
+                reason: "vertices not coplanar (to 1e-9 of its size)",
+            });
+        }
+    }
+    for i in 0..k {
+        let (a, b, c) = (vertices[i], vertices[(i + 1) % k], vertices[(i + 2) % k]);
+        let turn = normal.dot((b - a).cross(c - b));
+        if turn < -SHAPE_TOLERANCE * (b - a).length() * (c - b).length() {
+            return Err(AnalyticError::BadPolygon {
+                reason: "not convex, or vertices out of order",
+            });
+        }
+    }
+    Ok(normal)
+}
+
+/// Lambert's sum (1/2)|Σ θᵢ n·unit(Rᵢ × Rᵢ₊₁)| for a polygon already in
+/// the receiver's hemisphere: its projected solid angle, sr.
+pub(crate) fn lambert_projected_solid_angle(p: DVec3, n: DVec3, vertices: &[DVec3]) -> f64 {
+    let k = vertices.len();
+    if k < 3 {
+        return 0.0;
+    }
+    let (mut sum, mut comp) = (0.0f64, 0.0f64);
+    for i in 0..k {
+        let (a, b) = (vertices[i], vertices[(i + 1) % k]);
+        let ra = a - p;
+        let rb = b - p;
+        let cross = ra.cross(b - a);
+        let len = cross.length();
+        if !(len > 0.0) {
+            continue;
+        }
+        let theta = len.atan2(ra.dot(rb));
+        let term = theta * n.dot(cross) / len;
+        // Neumaier summation.
+        let t = sum + term;
+        comp += if sum.abs() >= term.abs() {
+            (sum - t) + term
+        } else {
+            (term - t) + sum
+        };
+        sum = t;
+    }
+    0.5 * (sum + comp).abs()
+}
+
+/// A uniform planar convex polygon light of radiance L, vertices in order
+/// (front face by the right-hand rule), one- or two-sided, seen from a
+/// receiver at `p` with unit normal `n` (closed form: Lambert's formula,
+/// E = (L/2) |Σ Γᵢ·n|, after clipping the polygon at the receiver's plane;
+/// module docs). A one-sided polygon seen from behind, or any polygon seen
+/// edge-on or wholly below the horizon, gives 0.
+///
+/// Errors: non-finite input, non-unit normal, fewer than 3 vertices, zero
+/// area, non-planar (to 1e-9 of its size) or non-convex vertices.
+///
+/// ```
+/// use glam::DVec3;
+/// use lambert_light::analytic::{polygon_irradiance, Emission};
+/// // A unit square 1 above the receiver, facing down (vertices clockwise
+/// // seen from above): E = L ∫cos θ dω = 4x atan x ≈ 0.7522 with x = 0.5/√1.25
+/// // (four corner rectangles, Howell catalog C-11).
+/// let sq = [DVec3::new(-0.5, -0.5, 1.0), DVec3::new(-0.5, 0.5, 1.0),
+///           DVec3::new(0.5, 0.5, 1.0), DVec3::new(0.5, -0.5, 1.0)];
+/// let e = polygon_irradiance(1.0, DVec3::ZERO, DVec3::Z, &sq, Emission::OneSided).unwrap();
+/// let x = 0.5f64 / (1.0f64 + 0.25).sqrt();
+/// let corner = 2.0 * (x * (0.5f64 / (1.25f64).sqrt()).atan());
+/// assert!((e - 2.0 * corner).abs() < 1e-14);
+/// ```
+pub fn polygon_irradiance(
+    radiance: f64,
+    p: DVec3,
+    normal: DVec3,
+    vertices: &[DVec3],
+    emission: Emission,
+) -> Result<f64, AnalyticError> {
+    finite("radiance", radiance)?;
+    let p = finite3("p", p)?;
+    let n = unit("normal", normal)?;
+    let front = polygon_normal(vertices)?;
+    let side = front.dot(p - vertices[0]);
+    if side == 0.0 || (emission == Emission::OneSided && side < 0.0) {
+        return Ok(0.0);
+    }
+    let clipped = clip_polygon_to_hemisphere(p, n, vertices);
+    Ok(radiance * lambert_projected_solid_angle(p, n, &clipped))
+}

@@ -1,0 +1,66 @@
+//! Uniform skies: the whole sky, a dome, and a cap of directions.
+
+use super::cap::cap_projected_solid_angle;
+use super::error::{finite, unit, AnalyticError};
+use glam::DVec3;
+use std::f64::consts::PI;
+
+/// A uniform sky of radiance L over the whole receiver hemisphere:
+/// E = ∫_{H²} L cos θ dω = Lπ, W/m² (closed form; the lecture's "uniform
+/// hemisphere" example).
+///
+/// ```
+/// use lambert_light::analytic::sky_irradiance;
+/// assert_eq!(sky_irradiance(2.0), 2.0 * std::f64::consts::PI);
+/// ```
+#[inline]
+pub fn sky_irradiance(radiance: f64) -> f64 {
+    radiance * PI
+}
+
+/// A uniform dome (the hemisphere of directions about `zenith`) of
+/// radiance L over a receiver of normal `n` tilted by β from the zenith:
+/// E = Lπ (1 + cos β)/2, W/m² (closed form; the cap of half-angle π/2).
+/// 1 + cos β is evaluated as |n + zenith|²/2, exact near β = π.
+pub fn dome_irradiance(radiance: f64, normal: DVec3, zenith: DVec3) -> Result<f64, AnalyticError> {
+    finite("radiance", radiance)?;
+    let n = unit("normal", normal)?;
+    let z = unit("zenith", zenith)?;
+    Ok(radiance * PI * 0.25 * (n + z).length_squared())
+}
+
+/// A uniform sky of radiance L inside the cone of directions of unit
+/// `axis` and half-angle γ ∈ (0, π], over a receiver of unit normal `n`:
+/// E = L ∫_{cap ∩ H²(n)} cos θ dω, W/m² (closed form for any tilt,
+/// including caps crossing the horizon; see
+/// [`cap_projected_solid_angle`]). γ = π is the whole sky (E = Lπ),
+/// γ = π/2 a dome.
+///
+/// ```
+/// use glam::DVec3;
+/// use lambert_light::analytic::{dome_irradiance, sky_cap_irradiance};
+/// use std::f64::consts::FRAC_PI_2;
+/// let n = DVec3::new(0.6, 0.0, 0.8);
+/// let cap = sky_cap_irradiance(1.0, n, DVec3::Z, FRAC_PI_2).unwrap();
+/// assert!((cap - dome_irradiance(1.0, n, DVec3::Z).unwrap()).abs() < 1e-15);
+/// ```
+pub fn sky_cap_irradiance(
+    radiance: f64,
+    normal: DVec3,
+    axis: DVec3,
+    half_angle: f64,
+) -> Result<f64, AnalyticError> {
+    finite("radiance", radiance)?;
+    let n = unit("normal", normal)?;
+    let a = unit("axis", axis)?;
+    finite("half_angle", half_angle)?;
+    if !(half_angle > 0.0 && half_angle <= PI) {
+        return Err(AnalyticError::NotPositive {
+            field: "half_angle (must be in (0, π])",
+            value: half_angle,
+        });
+    }
+    let (sg, cg) = half_angle.sin_cos();
+    let cb = n.dot(a);
+    Ok(radiance * cap_projected_solid_angle(cb, sg.max(0.0), cg))
+}

@@ -1,0 +1,184 @@
+//! Emitters: uniform Lambertian lights and the two delta lights.
+//!
+//! Every emitter is additive: lights do not occlude each other (occlusion is
+//! the tracer's business), so the irradiance of a scene is the sum of its
+//! emitters' irradiances, E = Σₖ ∫ Lₖ(ω) cos θ dω + Σ_delta Eₖ. One-sided
+//! emitters (disks, polygons) are dark seen from behind.
+
+mod directional;
+mod disk;
+mod error;
+mod point;
+mod polygon;
+mod sky;
+mod sky_cap;
+mod sphere;
+
+pub use directional::DirectionalLight;
+pub use disk::DiskLight;
+pub use error::EmitterError;
+pub use point::PointLight;
+pub use polygon::PolygonLight;
+pub use sky::Sky;
+pub use sky_cap::SkyCap;
+pub use sphere::SphereLight;
+
+use glam::DVec3;
+
+use crate::receiver::Receiver;
+use lambert_geometry::{ray_convex_polygon, ray_disk, ray_sphere};
+
+/// Any emitter of a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Emitter {
+    /// Radiance L from every direction.
+    Sky(Sky),
+    /// Radiance L from a cone of directions.
+    SkyCap(SkyCap),
+    /// A uniform spherical light.
+    Sphere(SphereLight),
+    /// A uniform disk light.
+    Disk(DiskLight),
+    /// A uniform planar convex polygon light.
+    Polygon(PolygonLight),
+    /// An isotropic point light (delta).
+    Point(PointLight),
+    /// A directional light (delta).
+    Directional(DirectionalLight),
+}
+
+impl Emitter {
+    /// The kind, as a scene file spells it.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Emitter::Sky(_) => "sky",
+            Emitter::SkyCap(_) => "sky_cap",
+            Emitter::Sphere(_) => "sphere",
+            Emitter::Disk(_) => "disk",
+            Emitter::Polygon(_) => "polygon",
+            Emitter::Point(_) => "point",
+            Emitter::Directional(_) => "directional",
+        }
+    }
+
+    /// Whether the emitter is a delta light (point or directional), whose
+    /// irradiance is added exactly rather than estimated.
+    pub fn is_delta(&self) -> bool {
+        matches!(self, Emitter::Point(_) | Emitter::Directional(_))
+    }
+
+    /// Errors when the receiver cannot be placed where it is relative to
+    /// this emitter: inside or on a sphere light.
+    pub fn check_receiver(&self, receiver: &Receiver) -> Result<(), EmitterError> {
+        if let Emitter::Sphere(s) = self {
+            let d = (receiver.point - s.center).length();
+            if !(d > s.radius) {
+                return Err(EmitterError::new(
+                    "receiver.point",
+                    format!(
+                        "is inside or on the sphere light (distance to its center {d} <= radius {})",
+                        s.radius
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The radiance L arriving at `origin` from the unit direction `w`
+    /// (0 where the emitter is not seen, or seen from the back of a
+    /// one-sided face); 0 for delta lights.
+    #[inline]
+    pub fn radiance_toward(&self, origin: DVec3, w: DVec3) -> f64 {
+        match self {
+            Emitter::Sky(s) => s.radiance,
+            Emitter::SkyCap(c) => {
+                if c.contains(w) {
+                    c.radiance
+                } else {
+                    0.0
+                }
+            }
+            Emitter::Sphere(s) => match ray_sphere(origin, w, s.center, s.radius) {
+                Some(_) => s.radiance,
+                None => 0.0,
+            },
+            Emitter::Disk(d) => {
+                let front = d.two_sided || w.dot(d.normal) < 0.0;
+                match ray_disk(origin, w, d.center, d.normal, d.radius) {
+                    Some(_) if front => d.radiance,
+                    _ => 0.0,
+                }
+            }
+            Emitter::Polygon(p) => {
+                let front = p.two_sided || w.dot(p.polygon.normal) < 0.0;
+                match ray_convex_polygon(origin, w, &p.polygon) {
+                    Some(_) if front => p.radiance,
+                    _ => 0.0,
+                }
+            }
+            Emitter::Point(_) | Emitter::Directional(_) => 0.0,
+        }
+    }
+
+    /// The exact irradiance of a delta light at the receiver (0 for the
+    /// others): a point light gives I max(cos θ, 0)/r², a directional one
+    /// E⊥ max(n·d, 0).
+    pub fn delta_irradiance(&self, receiver: &Receiver) -> f64 {
+        match self {
+            Emitter::Point(p) => {
+                let v = p.position - receiver.point;
+                let r2 = v.length_squared();
+                if r2 == 0.0 {
+                    return 0.0;
+                }
+                let cos = receiver.normal.dot(v) / r2.sqrt();
+                p.intensity * cos.max(0.0) / r2
+            }
+            Emitter::Directional(d) => d.irradiance * receiver.normal.dot(d.direction).max(0.0),
+            _ => 0.0,
+        }
+    }
+}
+
+impl Emitter {
+    /// The closed-form irradiance this emitter gives the receiver
+    /// ([`crate::analytic`]: Lπ for a sky, the cap formula for sky caps and
+    /// spheres, the disk and polygon formulas with clipping at the
+    /// receiver's plane, inverse-square and cosine laws for delta lights);
+    /// `None` only if the analytic function rejects the geometry.
+    pub fn closed_form_irradiance(&self, receiver: &Receiver) -> Option<f64> {
+        use crate::analytic::{
+            disk_irradiance, polygon_irradiance, sky_cap_irradiance, sky_irradiance,
+            sphere_irradiance, Emission,
+        };
+        let emission = |two_sided: bool| {
+            if two_sided {
+                Emission::TwoSided
+            } else {
+                Emission::OneSided
+            }
+        };
+        let (p, n) = (receiver.point, receiver.normal);
+        match self {
+            Emitter::Sky(s) => Some(sky_irradiance(s.radiance)),
+            Emitter::SkyCap(c) => sky_cap_irradiance(c.radiance, n, c.axis, c.half_angle).ok(),
+            Emitter::Sphere(s) => sphere_irradiance(s.radiance, p, n, s.center, s.radius).ok(),
+            Emitter::Disk(d) => disk_irradiance(
+                d.radiance,
+                p,
+                n,
+                d.center,
+                d.normal,
+                d.radius,
+                emission(d.two_sided),
+            )
+            .ok(),
+            Emitter::Polygon(q) => {
+                polygon_irradiance(q.radiance, p, n, &q.polygon.vertices, emission(q.two_sided))
+                    .ok()
+            }
+            Emitter::Point(_) | Emitter::Directional(_) => Some(self.delta_irradiance(receiver)),
+        }
+    }
+}

@@ -1,0 +1,276 @@
+//! `summary.md`: per scene, strategy × sequence ranked by the time to reach
+//! 0.1 % relative RMSE and by efficiency, with the fitted convergence slope
+//! next to the theoretical one. Computed from the finished rows (so it works
+//! after a merge of shards).
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+use lambert_estimator::estimation::SequenceKind;
+use lambert_estimator::strategy::Strategy;
+
+use crate::fit::{fit_loglog, LogLogFit};
+use crate::results::ResultRow;
+
+/// The target of the time-to-error column: 0.1 % relative RMSE.
+pub const TARGET_REL_RMSE: f64 = 1e-3;
+
+/// The statistics of one (scene, strategy, sequence) group.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GroupSummary {
+    /// Scene name.
+    pub scene: String,
+    /// Strategy.
+    pub strategy: Strategy,
+    /// Sequence.
+    pub sequence: SequenceKind,
+    /// The scene's closed form.
+    pub reference: Option<f64>,
+    /// The fit of RMSE against N (`None` without a reference).
+    pub fit: Option<LogLogFit>,
+    /// ns/sample at the largest N (the least overhead-dominated).
+    pub ns_per_sample: f64,
+    /// Efficiency at the largest N (`None` for a zero-variance estimate).
+    pub efficiency: Option<f64>,
+    /// Relative RMSE at the largest N.
+    pub final_rel_rmse: Option<f64>,
+    /// Largest N.
+    pub n_max: u64,
+    /// Predicted seconds (one thread) to reach [`TARGET_REL_RMSE`]: N* from
+    /// the fit, times ns/sample; 0 for an exact estimator; `None` without a
+    /// reference, with a zero reference, or without a decreasing fit.
+    pub time_to_target: Option<f64>,
+}
+
+/// The theoretical RMSE slope of a sequence ("exact" handled by the
+/// caller): −½ for independent samples; for jittered stratification in 2-D
+/// −1 on smooth integrands (−¾ with discontinuities); for Owen-scrambled
+/// Sobol −3/2 on smooth integrands (−¾ with discontinuities; Owen 1997).
+pub fn theoretical_slope(sequence: SequenceKind) -> &'static str {
+    match sequence {
+        SequenceKind::Independent => "−0.5",
+        SequenceKind::Stratified => "−1 smooth / −0.75 edges",
+        SequenceKind::Sobol => "−1.5 smooth / −0.75 edges",
+    }
+}
+
+/// Groups rows by (scene, strategy, sequence), in the rows' order of first
+/// appearance, and summarises each group.
+pub fn group_summaries(rows: &[ResultRow]) -> Vec<GroupSummary> {
+    let mut order: Vec<(String, Strategy, SequenceKind)> = Vec::new();
+    let mut groups: BTreeMap<usize, Vec<&ResultRow>> = BTreeMap::new();
+    let mut sorted: Vec<&ResultRow> = rows.iter().collect();
+    sorted.sort_by_key(|r| r.row);
+    for r in sorted {
+        let key = (r.scene.clone(), r.strategy, r.sequence);
+        let i = match order.iter().position(|k| *k == key) {
+            Some(i) => i,
+            None => {
+                order.push(key);
+                order.len() - 1
+            }
+        };
+        groups.entry(i).or_default().push(r);
+    }
+    groups
+        .into_iter()
+        .map(|(i, mut g)| {
+            g.sort_by_key(|r| r.log2_n);
+            let (scene, strategy, sequence) = order[i].clone();
+            let last = g[g.len() - 1];
+            let reference = last.reference;
+            let fit = reference.map(|_| {
+                let pts: Vec<(f64, f64)> = g
+                    .iter()
+                    .filter_map(|r| r.stats.rmse.map(|e| (r.n() as f64, e)))
+                    .collect();
+                fit_loglog(&pts)
+            });
+            let time_to_target = match (reference, fit) {
+                (Some(t), Some(LogLogFit::Exact)) if t != 0.0 => Some(0.0),
+                (Some(t), Some(f)) if t != 0.0 => f
+                    .n_for(TARGET_REL_RMSE * t.abs())
+                    .map(|n| n.max(1.0) * last.stats.ns_per_sample * 1e-9),
+                _ => None,
+            };
+            GroupSummary {
+                scene,
+                strategy,
+                sequence,
+                reference,
+                fit,
+                ns_per_sample: last.stats.ns_per_sample,
+                efficiency: last.stats.efficiency,
+                final_rel_rmse: last.stats.rel_rmse,
+                n_max: last.n(),
+                time_to_target,
+            }
+        })
+        .collect()
+}
+
+fn seconds(t: Option<f64>) -> String {
+    match t {
+        None => "—".into(),
+        Some(0.0) => "0 (exact)".into(),
+        Some(t) if t < 1e-3 => format!("{:.1} µs", t * 1e6),
+        Some(t) if t < 1.0 => format!("{:.1} ms", t * 1e3),
+        Some(t) if t < 3600.0 => format!("{t:.2} s"),
+        Some(t) if t < 86400.0 * 365.0 => format!("{:.1} h", t / 3600.0),
+        Some(t) => format!("{:.1e} years", t / (86400.0 * 365.0)),
+    }
+}
+
+fn slope_text(fit: Option<LogLogFit>) -> String {
+    match fit {
+        None => "— (no closed form)".into(),
+        Some(LogLogFit::Exact) => "exact".into(),
+        Some(LogLogFit::TooFewPoints) => "—".into(),
+        Some(LogLogFit::Line {
+            slope, slope_se, ..
+        }) => format!("{slope:.3} ± {slope_se:.3}"),
+    }
+}
+
+/// The Markdown summary of a study's rows.
+pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
+    let groups = group_summaries(rows);
+    let mut s = String::new();
+    let _ = writeln!(s, "# Study `{title}`\n");
+    let _ = writeln!(
+        s,
+        "Per scene, every strategy × sequence ranked by the predicted one-thread time to reach \
+         0.1 % relative RMSE (from the log-log fit of RMSE against N, times ns/sample at the \
+         largest N), then by efficiency ε = 1/(V·T) (V: variance of one sample's estimate, T: \
+         seconds per sample). Measured slope: least squares of ln RMSE on ln N ± its standard \
+         error; theoretical slopes: −½ for independent Monte Carlo, −1 (jittered) and −3/2 \
+         (Owen-scrambled Sobol) on smooth integrands, −¾ for both with discontinuities; \
+         \"exact\" when every replicate has zero error. Scenes without a closed form have no \
+         error columns.\n"
+    );
+    let mut scenes: Vec<&str> = Vec::new();
+    for g in &groups {
+        if !scenes.contains(&g.scene.as_str()) {
+            scenes.push(&g.scene);
+        }
+    }
+    for scene in scenes {
+        let mut gs: Vec<&GroupSummary> = groups.iter().filter(|g| g.scene == scene).collect();
+        let reference = gs[0].reference;
+        gs.sort_by(|a, b| {
+            let ta = a.time_to_target.unwrap_or(f64::INFINITY);
+            let tb = b.time_to_target.unwrap_or(f64::INFINITY);
+            ta.total_cmp(&tb).then_with(|| {
+                let ea = a.efficiency.unwrap_or(f64::INFINITY);
+                let eb = b.efficiency.unwrap_or(f64::INFINITY);
+                eb.total_cmp(&ea)
+            })
+        });
+        let _ = writeln!(s, "## {scene}\n");
+        match reference {
+            Some(r) => {
+                let _ = writeln!(s, "Closed form E = {r:.9e} W/m².\n");
+            }
+            None => {
+                let _ = writeln!(s, "No closed form: ranked by efficiency only.\n");
+            }
+        }
+        let _ = writeln!(
+            s,
+            "| rank | strategy | sequence | time to 0.1 % | efficiency 1/(V·T) | ns/sample | rel. RMSE at N = {} | slope | theory |",
+            gs[0].n_max
+        );
+        let _ = writeln!(s, "|---:|---|---|---:|---:|---:|---:|---:|---|");
+        for (i, g) in gs.iter().enumerate() {
+            let theory = if g.fit == Some(LogLogFit::Exact) {
+                "exact"
+            } else {
+                theoretical_slope(g.sequence)
+            };
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} |",
+                i + 1,
+                g.strategy,
+                g.sequence,
+                seconds(g.time_to_target),
+                g.efficiency
+                    .map(|e| format!("{e:.3e}"))
+                    .unwrap_or_else(|| "∞ (V = 0)".into()),
+                g.ns_per_sample,
+                g.final_rel_rmse
+                    .map(|e| format!("{e:.2e}"))
+                    .unwrap_or_else(|| "—".into()),
+                slope_text(g.fit),
+                theory,
+            );
+        }
+        let _ = writeln!(s);
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::aggregate::RowStats;
+
+    fn row(i: usize, strategy: Strategy, log2_n: u32, rmse: f64) -> ResultRow {
+        ResultRow {
+            row: i,
+            scene: "s".into(),
+            strategy,
+            sequence: SequenceKind::Independent,
+            log2_n,
+            reference: Some(2.0),
+            stats: RowStats {
+                replicates: 4,
+                mean_estimate: 2.0,
+                mean_rel_error: Some(0.0),
+                rmse: Some(rmse),
+                rel_rmse: Some(rmse / 2.0),
+                coverage: Some(1.0),
+                sample_variance: rmse,
+                ns_per_sample: 10.0,
+                efficiency: if rmse > 0.0 { Some(1.0) } else { None },
+            },
+        }
+    }
+
+    #[test]
+    fn groups_fit_and_rank() {
+        // Light: RMSE = 2/√N exactly; cosine: exact.
+        let mut rows = Vec::new();
+        for k in 0..6 {
+            rows.push(row(
+                k as usize,
+                Strategy::Light,
+                k,
+                2.0 / f64::from(1u32 << k).sqrt(),
+            ));
+        }
+        for k in 0..6 {
+            rows.push(row(6 + k as usize, Strategy::CosineHemisphere, k, 0.0));
+        }
+        let g = group_summaries(&rows);
+        assert_eq!(g.len(), 2);
+        match g[0].fit {
+            Some(LogLogFit::Line {
+                slope, slope_se, ..
+            }) => {
+                assert!((slope + 0.5).abs() < 1e-12 && slope_se < 1e-12);
+            }
+            ref other => panic!("{other:?}"),
+        }
+        // 0.1 % of E = 2 is 0.002 = 2/√N → N = 1e6; × 10 ns = 10 ms.
+        assert!((g[0].time_to_target.unwrap() - 1e-2).abs() < 1e-9);
+        assert_eq!(g[1].fit, Some(LogLogFit::Exact));
+        assert_eq!(g[1].time_to_target, Some(0.0));
+        let md = summary_markdown("t", &rows);
+        let cos = md.find("| 1 | cosine-hemisphere").unwrap();
+        let light = md.find("| 2 | light").unwrap();
+        assert!(cos < light, "{md}");
+        assert!(md.contains("-0.500 ± 0.000"), "{md}");
+        assert!(md.contains("| exact | exact |"), "{md}");
+    }
+}
