@@ -9,6 +9,7 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{DVec3, Vec3};
 use lambert_benches::{config, next_u32x2, next_u64x2, rng, BATCH};
+use lambert_geometry::{f32 as g32, f64 as g64};
 use lambert_sampling::{f32 as s32, f64 as s64};
 use rand_distr::{Distribution, UnitSphere};
 
@@ -87,8 +88,16 @@ fn warps(c: &mut Criterion) {
     let cone32 = s32::UniformCone::from_theta_max(0.3).unwrap();
     let cone64 = s64::UniformCone::from_theta_max(0.3).unwrap();
     both!("uniform cone", |u| cone32.sample(u), cone64.sample(u));
-    let sph32 = s32::SphereSolidAngle::new(Vec3::ZERO, Vec3::new(5.0, 0.0, 8.66), 1.0).unwrap();
-    let sph64 = s64::SphereSolidAngle::new(DVec3::ZERO, DVec3::new(5.0, 0.0, 8.66), 1.0).unwrap();
+    let sph32 = s32::SphereSolidAngle::new(
+        Vec3::ZERO,
+        &g32::Sphere::new(Vec3::new(5.0, 0.0, 8.66), 1.0).unwrap(),
+    )
+    .unwrap();
+    let sph64 = s64::SphereSolidAngle::new(
+        DVec3::ZERO,
+        &g64::Sphere::new(DVec3::new(5.0, 0.0, 8.66), 1.0).unwrap(),
+    )
+    .unwrap();
     both!(
         "sphere light",
         |u| sph32.sample(u).direction,
@@ -121,23 +130,26 @@ fn warps(c: &mut Criterion) {
         |u| rect32.sample(u).direction,
         rect64.sample(u).direction
     );
-    let area_tri32 = s32::UniformTriangle::new(a.as_vec3(), b.as_vec3(), c.as_vec3()).unwrap();
-    let area_tri64 = s64::UniformTriangle::new(a, b, c).unwrap();
+    let area_tri32 = s32::UniformTriangle::new(
+        &g32::Triangle::new(a.as_vec3(), b.as_vec3(), c.as_vec3()).unwrap(),
+    );
+    let area_tri64 = s64::UniformTriangle::new(&g64::Triangle::new(a, b, c).unwrap());
     both!(
         "triangle area",
         |u| area_tri32.sample(u).point,
         area_tri64.sample(u).point
     );
-    let disk32 = s32::UniformDiskArea::new(Vec3::Z, Vec3::NEG_Z, 0.5).unwrap();
-    let disk64 = s64::UniformDiskArea::new(DVec3::Z, DVec3::NEG_Z, 0.5).unwrap();
+    let disk32 = s32::UniformDiskArea::new(&g32::Disk::new(Vec3::Z, Vec3::NEG_Z, 0.5).unwrap());
+    let disk64 = s64::UniformDiskArea::new(&g64::Disk::new(DVec3::Z, DVec3::NEG_Z, 0.5).unwrap());
     both!(
         "disk area",
         |u| disk32.sample(u).point,
         disk64.sample(u).point
     );
-    let par32 =
-        s32::UniformParallelogram::new(corner.as_vec3(), e0.as_vec3(), e1.as_vec3()).unwrap();
-    let par64 = s64::UniformParallelogram::new(corner, e0, e1).unwrap();
+    let par32 = s32::UniformParallelogram::new(
+        &g32::Parallelogram::new(corner.as_vec3(), e0.as_vec3(), e1.as_vec3()).unwrap(),
+    );
+    let par64 = s64::UniformParallelogram::new(&g64::Parallelogram::new(corner, e0, e1).unwrap());
     both!(
         "parallelogram area",
         |u| par32.sample(u).point,

@@ -52,7 +52,7 @@ pub fn conditioning(spec: &DirectionWarpSpec) -> (f64, f64) {
     match spec {
         DirectionWarpSpec::SphericalTriangle { vertices } => {
             let dirs: Vec<DVec3> = vertices.iter().map(|v| v.normalize()).collect();
-            let omega = lambert_sampling::f64::spherical_triangle_solid_angle(
+            let omega = lambert_geometry::f64::triangle_solid_angle(
                 DVec3::ZERO,
                 vertices[0],
                 vertices[1],

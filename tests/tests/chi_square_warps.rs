@@ -7,7 +7,7 @@
 //! is α = 0.01, so each runs at the Šidák level 1 − (1 − α)^(1/m).
 
 use glam::DVec3;
-use lambert_sampling::{Independent, SampleSequence};
+use lambert_sampling::sequence::{Independent, SampleSequence};
 use lambert_tests::{
     binning_for, chi_square, one_minus_cos, partition_for, run_case, runs, CHI_SQUARE_SAMPLES,
 };
@@ -130,9 +130,9 @@ fn rejects_half_circle_azimuths() {
     .significance(0.01)
     .run(
         |i| {
-            let mut s = lambert_sampling::Independent::new(SEED);
-            lambert_sampling::SampleSequence::start_sample(&mut s, i);
-            let mut u = lambert_sampling::SampleSequence::next_2d(&mut s);
+            let mut s = lambert_sampling::sequence::Independent::new(SEED);
+            lambert_sampling::sequence::SampleSequence::start_sample(&mut s, i);
+            let mut u = lambert_sampling::sequence::SampleSequence::next_2d(&mut s);
             u.y *= 0.5;
             warp.sample(u).direction
         },

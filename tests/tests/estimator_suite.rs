@@ -7,7 +7,7 @@
 use glam::DVec2;
 use lambert_estimator::clt::clt_applies;
 use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind, RQMC_REPLICATES};
-use lambert_estimator::strategy::{LightSampler, Strategy};
+use lambert_estimator::strategy::{EmitterLight, Strategy};
 use lambert_estimator::{run_chunked, Estimate};
 use lambert_light::builtin::builtin_scenes;
 use lambert_light::{Emitter, Scene};
@@ -220,17 +220,17 @@ fn results_are_bit_identical_across_threads_and_runs() {
 
 /// An estimator built from the public pieces, with a deliberate defect:
 /// returns (mean, standard error) over 2^18 independent samples.
-fn defective(scene: &Scene, f: impl Fn(&LightSampler, DVec2) -> f64 + Sync) -> (f64, f64) {
+fn defective(scene: &Scene, f: impl Fn(&EmitterLight, DVec2) -> f64 + Sync) -> (f64, f64) {
     let emitter = &scene.emitters[0];
-    let sampler = LightSampler::new(emitter, &scene.receiver);
+    let sampler = EmitterLight::new(emitter, &scene.receiver);
     let e = run_chunked(SAMPLES, 4096, 2, |_, range| {
-        let mut seq = lambert_sampling::Independent::new(1);
+        let mut seq = lambert_sampling::sequence::Independent::new(1);
         range
             .map(|i| {
-                lambert_sampling::SampleSequence::start_sample(&mut seq, i);
+                lambert_sampling::sequence::SampleSequence::start_sample(&mut seq, i);
                 f(
                     &sampler,
-                    lambert_sampling::SampleSequence::next_2d(&mut seq),
+                    lambert_sampling::sequence::SampleSequence::next_2d(&mut seq),
                 )
             })
             .collect::<Estimate>()

@@ -88,8 +88,8 @@ fn sphere_parses() {
     else {
         panic!("not a sphere")
     };
-    assert_eq!(s.center, DVec3::new(0.0, 5.0, 8.66));
-    assert_eq!((s.radius, s.radiance), (1.0, 1.0));
+    assert_eq!(s.sphere.center(), DVec3::new(0.0, 5.0, 8.66));
+    assert_eq!((s.sphere.radius(), s.radiance), (1.0, 1.0));
 }
 
 #[test]
@@ -98,8 +98,8 @@ fn disk_parses_one_and_two_sided() {
     let Emitter::Disk(d) = parse_one(body) else {
         panic!("not a disk")
     };
-    assert_eq!(d.normal, -DVec3::Z, "the normal is normalised");
-    assert_eq!((d.radius, d.radiance), (0.5, 2.0));
+    assert_eq!(d.disk.normal(), -DVec3::Z, "the normal is normalised");
+    assert_eq!((d.disk.radius(), d.radiance), (0.5, 2.0));
     assert!(!d.two_sided, "one-sided by default");
 
     let Emitter::Disk(d) = parse_one(&format!("{body}\ntwo_sided = true")) else {
@@ -135,10 +135,13 @@ fn polygons_parse_triangle_rectangle_pentagon() {
         let Emitter::Polygon(p) = parse_one(body) else {
             panic!("not a polygon")
         };
-        assert_eq!(p.polygon.vertices.len(), n);
+        assert_eq!(p.polygon.vertices().len(), n);
         assert_eq!(p.two_sided, sides);
-        assert!((p.polygon.normal - (-DVec3::Z)).length() < 1e-15, "{body}");
-        assert!((p.polygon.area - area).abs() < 1e-12 * area, "{body}");
+        assert!(
+            (p.polygon.normal() - (-DVec3::Z)).length() < 1e-15,
+            "{body}"
+        );
+        assert!((p.polygon.area() - area).abs() < 1e-12 * area, "{body}");
     }
 }
 
@@ -757,22 +760,22 @@ fn check_invariants(scene: &Scene) -> Result<(), String> {
                 unit(c.axis) && c.half_angle > 0.0 && c.half_angle <= PI && non_negative(c.radiance)
             }
             Emitter::Sphere(s) => {
-                s.center.is_finite()
-                    && positive(s.radius)
+                s.sphere.center().is_finite()
+                    && positive(s.sphere.radius())
                     && non_negative(s.radiance)
-                    && (r.point - s.center).length() > s.radius
+                    && (r.point - s.sphere.center()).length() > s.sphere.radius()
             }
             Emitter::Disk(d) => {
-                d.center.is_finite()
-                    && unit(d.normal)
-                    && positive(d.radius)
+                d.disk.center().is_finite()
+                    && unit(d.disk.normal())
+                    && positive(d.disk.radius())
                     && non_negative(d.radiance)
             }
             Emitter::Polygon(p) => {
-                p.polygon.vertices.len() >= 3
-                    && p.polygon.vertices.iter().all(|v| v.is_finite())
-                    && unit(p.polygon.normal)
-                    && positive(p.polygon.area)
+                p.polygon.vertices().len() >= 3
+                    && p.polygon.vertices().iter().all(|v| v.is_finite())
+                    && unit(p.polygon.normal())
+                    && positive(p.polygon.area())
                     && non_negative(p.radiance)
             }
             Emitter::Point(p) => p.position.is_finite() && non_negative(p.intensity),

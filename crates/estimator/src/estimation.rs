@@ -20,7 +20,7 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use glam::DVec2;
-use lambert_sampling::{SampleSequence, Sobol, Stratified};
+use lambert_sampling::sequence::{SampleSequence, Sobol, Stratified};
 
 use crate::statistics::{run_chunked, ConfidenceInterval, Estimate, StatisticsError};
 use crate::strategy::{PreparedEmitter, Strategy};
@@ -310,7 +310,7 @@ fn independent_chunk(
         for x in u.iter_mut() {
             *x = next();
         }
-        if p.strategy.dimensions() > 1 {
+        if p.technique.dimensions() > 1 {
             for x in u2.iter_mut() {
                 *x = next();
             }
@@ -331,7 +331,7 @@ fn sequence_chunk<S: SampleSequence>(
     range: std::ops::Range<u64>,
 ) -> Estimate {
     let n = (range.end - range.start) as usize;
-    let dims: usize = prepared.iter().map(|p| p.strategy.dimensions()).sum();
+    let dims: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
     let mut points = vec![DVec2::ZERO; n * dims];
     let mut s = sequence.clone();
     for (j, i) in range.enumerate() {
@@ -344,13 +344,13 @@ fn sequence_chunk<S: SampleSequence>(
     let mut d = 0;
     for p in prepared {
         let u = &points[d * n..(d + 1) * n];
-        let u2 = if p.strategy.dimensions() > 1 {
+        let u2 = if p.technique.dimensions() > 1 {
             &points[(d + 1) * n..(d + 2) * n]
         } else {
             u
         };
         p.evaluate_batch(&scene.receiver, u, u2, &mut values);
-        d += p.strategy.dimensions();
+        d += p.technique.dimensions();
     }
     Estimate::from_values(&values)
 }

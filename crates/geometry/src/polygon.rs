@@ -1,112 +1,223 @@
-//! Planar convex polygons: validation, ray intersection, inside test.
+//! Planar convex polygons.
 
-use glam::DVec3;
+macro_rules! polygon_impl {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::frame::$p::Frame;
+        use crate::plane::$p::{plane_distance, point_on_plane};
+        use crate::precision::$p::{wide3, Real, V2, V3};
+        use crate::ray::$p::{Hit, Intersect, Ray};
+        use crate::solid_angle::$p::convex_polygon_solid_angle;
+        use crate::GeometryError;
 
-use crate::ray_plane;
-
-/// A planar convex polygon with its unit normal by the right-hand rule
-/// (counter-clockwise seen from the front).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ConvexPolygon {
-    /// The vertices, in order.
-    pub vertices: Vec<DVec3>,
-    /// The unit normal (Newell's method, then normalised).
-    pub normal: DVec3,
-    /// The area.
-    pub area: f64,
-}
-
-impl ConvexPolygon {
-    /// Validates `vertices` as a planar, convex, non-degenerate polygon.
-    ///
-    /// Planarity tolerance: every vertex within 1e-9 of the largest
-    /// extent of the polygon from its plane. Convexity: every turn has the
-    /// same orientation as the normal. Errors say which vertex failed.
-    pub fn new(vertices: Vec<DVec3>) -> Result<Self, String> {
-        if vertices.len() < 3 {
-            return Err(format!("needs at least 3 vertices, got {}", vertices.len()));
+        /// A planar, strictly convex polygon; its front face is the side
+        /// of the right-hand-rule normal (vertices counter-clockwise seen
+        /// from the front).
+        ///
+        /// - validation: at least 3 finite vertices; the normal by Newell's
+        ///   method (robust for any planar polygon; Sutherland, Sproull &
+        ///   Schumacker 1974); every vertex within 1e-9 (f64) or 1e-4 (f32)
+        ///   of the polygon's extent from the plane; every turn in the
+        ///   normal's sense;
+        /// - area, from Newell's normal;
+        /// - solid angle from a point: the fan of triangles by Van
+        ///   Oosterom & Strackee;
+        /// - intersection: the plane's, then the point on the inner side of
+        ///   every edge; the point is projected back onto the plane;
+        /// - surface parameters: coordinates (metres) along the x and y
+        ///   axes of the normal's [`Frame`], from the first vertex.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::ConvexPolygon;")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        /// let square = ConvexPolygon::new(vec![
+        #[doc = concat!("    ", stringify!($v3), "::new(-1.0, -1.0, 2.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(1.0, -1.0, 2.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(1.0, 1.0, 2.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(-1.0, 1.0, 2.0),")]
+        /// ])?;
+        /// assert_eq!(square.area(), 4.0);
+        #[doc = concat!("assert_eq!(square.normal(), ", stringify!($v3), "::Z);")]
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct ConvexPolygon {
+            vertices: Vec<V3>,
+            frame: Frame,
+            area: Real,
         }
-        for (i, v) in vertices.iter().enumerate() {
-            if !v.is_finite() {
-                return Err(format!("vertex {i} must be finite, got {v}"));
+
+        /// How far from the plane a vertex may lie, relative to the
+        /// polygon's extent.
+        const PLANARITY: Real = if Real::EPSILON < 1e-10 { 1e-9 } else { 1e-4 };
+
+        impl ConvexPolygon {
+            /// Validates `vertices` as a planar, strictly convex,
+            /// non-degenerate polygon; errors (field `vertices`) say which
+            /// vertex failed and by how much.
+            pub fn new(vertices: Vec<V3>) -> Result<Self, GeometryError> {
+                let shape = |problem: String| GeometryError::Shape {
+                    field: "vertices",
+                    problem,
+                };
+                if vertices.len() < 3 {
+                    return Err(shape(format!(
+                        "needs at least 3 vertices, got {}",
+                        vertices.len()
+                    )));
+                }
+                for (i, v) in vertices.iter().enumerate() {
+                    if !v.is_finite() {
+                        return Err(shape(format!(
+                            "vertex {i} must be finite, got {}",
+                            wide3(*v)
+                        )));
+                    }
+                }
+                let n = vertices.len();
+                let mut newell = V3::ZERO;
+                for i in 0..n {
+                    let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                    newell += V3::new(
+                        (a.y - b.y) * (a.z + b.z),
+                        (a.z - b.z) * (a.x + b.x),
+                        (a.x - b.x) * (a.y + b.y),
+                    );
+                }
+                let twice_area = newell.length();
+                let extent = vertices
+                    .iter()
+                    .map(|v| (*v - vertices[0]).length())
+                    .fold(0.0, Real::max);
+                if !twice_area.is_finite() || !extent.is_finite() {
+                    // Otherwise the normal would be NaN and every check
+                    // below would pass.
+                    return Err(shape(format!(
+                        "is too large: its area or extent overflows (area {:e}, extent {extent:e})",
+                        0.5 * twice_area
+                    )));
+                }
+                if !(twice_area > 0.0) {
+                    return Err(shape(
+                        "has zero area (collinear or repeated vertices)".into(),
+                    ));
+                }
+                let normal = newell / twice_area;
+                for (i, v) in vertices.iter().enumerate() {
+                    let off = normal.dot(*v - vertices[0]).abs();
+                    if off > PLANARITY * extent {
+                        return Err(shape(format!(
+                            "is not planar: vertex {i} lies {off:e} from the plane of the others (tolerance {:e})",
+                            PLANARITY * extent
+                        )));
+                    }
+                }
+                for i in 0..n {
+                    let (a, b, c) = (vertices[i], vertices[(i + 1) % n], vertices[(i + 2) % n]);
+                    let turn = (b - a).cross(c - b).dot(normal);
+                    if turn <= 0.0 {
+                        return Err(shape(format!(
+                            "is not strictly convex at vertex {} (vertices must turn one way, counter-clockwise seen from the front)",
+                            (i + 1) % n
+                        )));
+                    }
+                }
+                Ok(ConvexPolygon {
+                    vertices,
+                    frame: Frame::from_normal(normal),
+                    area: 0.5 * twice_area,
+                })
+            }
+
+            /// The vertices, in order.
+            #[inline]
+            pub fn vertices(&self) -> &[V3] {
+                &self.vertices
+            }
+
+            /// The unit normal (right-hand rule, by Newell's method).
+            #[inline]
+            pub fn normal(&self) -> V3 {
+                self.frame.z
+            }
+
+            /// The frame whose z is the normal.
+            #[inline]
+            pub fn frame(&self) -> &Frame {
+                &self.frame
+            }
+
+            /// The area, in m².
+            #[inline]
+            pub fn area(&self) -> Real {
+                self.area
+            }
+
+            /// The solid angle, in steradians, that the polygon subtends at
+            /// `point`.
+            #[inline]
+            pub fn solid_angle_from(&self, point: V3) -> Real {
+                convex_polygon_solid_angle(point, &self.vertices)
+            }
+
+            /// Whether `point`, on the polygon's plane, lies inside it
+            /// (edges included).
+            #[inline]
+            pub fn contains(&self, point: V3) -> bool {
+                let v = &self.vertices;
+                let n = v.len();
+                (0..n).all(|i| {
+                    let (a, b) = (v[i], v[(i + 1) % n]);
+                    (b - a).cross(point - a).dot(self.frame.z) >= 0.0
+                })
+            }
+
+            /// When the polygon is a rectangle (4 vertices, right angles to
+            /// 1e-9, opposite corners closing to 1e-9 of the edges), its
+            /// corner and two edges.
+            pub fn as_rectangle(&self) -> Option<(V3, V3, V3)> {
+                let v = &self.vertices;
+                if v.len() != 4 {
+                    return None;
+                }
+                let (e0, e1) = (v[1] - v[0], v[3] - v[0]);
+                let opposite = v[0] + e0 + e1 - v[2];
+                let square = e0.length() * e1.length();
+                ((e0.dot(e1).abs() as f64) <= 1e-9 * square as f64
+                    && (opposite.length() as f64) <= 1e-9 * (e0.length() + e1.length()) as f64)
+                    .then_some((v[0], e0, e1))
             }
         }
-        // Newell's normal: robust for any planar polygon.
-        let n = vertices.len();
-        let mut newell = DVec3::ZERO;
-        for i in 0..n {
-            let (a, b) = (vertices[i], vertices[(i + 1) % n]);
-            newell += DVec3::new(
-                (a.y - b.y) * (a.z + b.z),
-                (a.z - b.z) * (a.x + b.x),
-                (a.x - b.x) * (a.y + b.y),
-            );
-        }
-        let twice_area = newell.length();
-        let extent = vertices
-            .iter()
-            .map(|v| (*v - vertices[0]).length())
-            .fold(0.0, f64::max);
-        if !twice_area.is_finite() || !extent.is_finite() {
-            // Otherwise the normal would be NaN and every check below pass.
-            return Err(format!(
-                "is too large: its area or extent overflows (area {:e}, extent {extent:e})",
-                0.5 * twice_area
-            ));
-        }
-        if !(twice_area > 0.0) {
-            return Err("has zero area (collinear or repeated vertices)".into());
-        }
-        let normal = newell / twice_area;
-        for (i, v) in vertices.iter().enumerate() {
-            let off = normal.dot(*v - vertices[0]).abs();
-            if off > 1e-9 * extent {
-                return Err(format!(
-                    "is not planar: vertex {i} lies {off:e} from the plane of the others (tolerance {:e})",
-                    1e-9 * extent
-                ));
+
+        impl Intersect for ConvexPolygon {
+            #[inline]
+            fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real> {
+                let t = plane_distance(ray, self.vertices[0], self.frame.z)?;
+                (t < t_max && self.contains(ray.origin + ray.direction * t)).then_some(t)
+            }
+
+            #[inline]
+            fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
+                let t = self.hit_distance(ray, t_max)?;
+                let (point, error) = point_on_plane(ray, t, self.vertices[0], self.frame.z);
+                let local = point - self.vertices[0];
+                Some(Hit {
+                    distance: t,
+                    point,
+                    normal: self.frame.z,
+                    error,
+                    uv: V2::new(local.dot(self.frame.x), local.dot(self.frame.y)),
+                })
             }
         }
-        for i in 0..n {
-            let (a, b, c) = (vertices[i], vertices[(i + 1) % n], vertices[(i + 2) % n]);
-            let turn = (b - a).cross(c - b).dot(normal);
-            if turn <= 0.0 {
-                return Err(format!(
-                    "is not strictly convex at vertex {} (vertices must turn one way, counter-clockwise seen from the front)",
-                    (i + 1) % n
-                ));
-            }
-        }
-        Ok(ConvexPolygon {
-            vertices,
-            normal,
-            area: 0.5 * twice_area,
-        })
-    }
+    };
 }
 
-/// Whether the point `p` on the polygon's plane lies inside it (edges
-/// included).
-#[inline]
-pub fn convex_polygon_contains(polygon: &ConvexPolygon, p: DVec3) -> bool {
-    let v = &polygon.vertices;
-    let n = v.len();
-    (0..n).all(|i| {
-        let (a, b) = (v[i], v[(i + 1) % n]);
-        (b - a).cross(p - a).dot(polygon.normal) >= 0.0
-    })
-}
-
-/// The distance t > 0 at which the ray meets the polygon, or `None`.
-#[inline]
-pub fn ray_convex_polygon(origin: DVec3, w: DVec3, polygon: &ConvexPolygon) -> Option<f64> {
-    let t = ray_plane(origin, w, polygon.vertices[0], polygon.normal)?;
-    convex_polygon_contains(polygon, origin + w * t).then_some(t)
-}
+crate::both_precisions!(polygon_impl);
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::f64::{ConvexPolygon, Intersect, Ray};
+    use glam::DVec3;
 
     #[test]
     fn validates_and_intersects() {
@@ -117,20 +228,22 @@ mod tests {
             DVec3::new(-1.0, 1.0, 2.0),
         ])
         .unwrap();
-        assert_eq!(square.normal, DVec3::Z);
-        assert_eq!(square.area, 4.0);
+        assert_eq!(square.normal(), DVec3::Z);
+        assert_eq!(square.area(), 4.0);
+        let ray = |d: DVec3| Ray::new(DVec3::ZERO, d);
         assert_eq!(
-            ray_convex_polygon(DVec3::ZERO, DVec3::Z, &square),
+            square.hit_distance(&ray(DVec3::Z), f64::INFINITY),
             Some(2.0)
         );
-        assert!(ray_convex_polygon(DVec3::ZERO, DVec3::X, &square).is_none());
+        assert!(square.hit_distance(&ray(DVec3::X), f64::INFINITY).is_none());
+        assert!(square.as_rectangle().is_some());
         let bent = ConvexPolygon::new(vec![
             DVec3::new(-1.0, -1.0, 2.0),
             DVec3::new(1.0, -1.0, 2.0),
             DVec3::new(1.0, 1.0, 2.5),
             DVec3::new(-1.0, 1.0, 2.0),
         ]);
-        assert!(bent.unwrap_err().contains("not planar"));
+        assert!(bent.unwrap_err().to_string().contains("not planar"));
         let concave = ConvexPolygon::new(vec![
             DVec3::new(0.0, 0.0, 0.0),
             DVec3::new(2.0, 0.0, 0.0),
@@ -138,7 +251,8 @@ mod tests {
             DVec3::new(2.0, 2.0, 0.0),
             DVec3::new(0.0, 2.0, 0.0),
         ]);
-        assert!(concave.unwrap_err().contains("convex"));
-        assert!(ConvexPolygon::new(vec![DVec3::ZERO, DVec3::X]).is_err());
+        assert!(concave.unwrap_err().to_string().contains("convex"));
+        let e = ConvexPolygon::new(vec![DVec3::ZERO, DVec3::X]).unwrap_err();
+        assert_eq!(e.to_string(), "vertices: needs at least 3 vertices, got 2");
     }
 }

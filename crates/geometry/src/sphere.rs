@@ -1,60 +1,218 @@
-//! Ray–sphere intersection.
+//! Spheres.
 
-use glam::DVec3;
+macro_rules! sphere_impl {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::precision::$p::{wide3, Real, V2, V3, PI};
+        use crate::ray::$p::{gamma, Hit, Intersect, Ray};
+        use crate::validate;
+        use crate::GeometryError;
 
-/// The nearest positive distance t at which the ray o + t·w (w unit) meets
-/// the sphere (center, radius), or `None`.
-///
-/// With v = o − c, the roots of t² + 2(v·w)t + (|v|² − r²) = 0 are formed
-/// without cancellation (pbrt-v4 §6.8.1, Numerical Recipes' q form):
-/// discriminant from |v − (v·w)w|² (the squared distance of the center from
-/// the line), and the smaller root as c/q where the larger would cancel.
-#[inline]
-pub fn ray_sphere(origin: DVec3, w: DVec3, center: DVec3, radius: f64) -> Option<f64> {
-    let v = origin - center;
-    let b = v.dot(w);
-    let perp = v - w * b;
-    let disc = (radius - perp.length()) * (radius + perp.length());
-    if disc < 0.0 {
-        return None;
-    }
-    let root = disc.sqrt();
-    let c = v.length_squared() - radius * radius;
-    // q = −(b + sign(b)·√disc); roots q and c/q.
-    let q = if b > 0.0 { -(b + root) } else { -b + root };
-    let (t0, t1) = {
-        let a = q;
-        let other = if q != 0.0 { c / q } else { 0.0 };
-        if a < other {
-            (a, other)
-        } else {
-            (other, a)
+        /// A sphere: the points at distance `radius` from `center`.
+        ///
+        /// - area 4πr²;
+        /// - solid angle from a point at distance d > r from the center:
+        ///   the cap sin θmax = r/d, Ω = 2π(1 − cos θmax), evaluated as
+        ///   2π s²/(1 + cos θmax) with cos θmax = √((d − r)(d + r))/d, which
+        ///   loses nothing for tiny or distant spheres (1 − cos θmax would
+        ///   round to 0) nor for nearly touching ones;
+        /// - intersection: the roots of t² + 2(v·d)t + (|v|² − r²) = 0,
+        ///   v = o − c, formed without cancellation (pbrt-v4 §6.8.1): the
+        ///   discriminant from the squared distance of the center to the
+        ///   line, the small root as c/q where the other form would cancel.
+        ///   The hit point is projected back onto the sphere, which bounds
+        ///   its error by γ₅ of its offset from the center plus the
+        ///   rounding of adding the center (pbrt-v4 §6.8.5).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::{Intersect, Ray, Sphere};")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        #[doc = concat!("let s = Sphere::new(", stringify!($v3), "::new(0.0, 0.0, 10.0), 1.0)?;")]
+        #[doc = concat!("let hit = s.intersect(&Ray::new(", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z), ", stringify!($p), "::INFINITY).unwrap();")]
+        /// assert_eq!(hit.distance, 9.0);
+        #[doc = concat!("assert_eq!(hit.normal, -", stringify!($v3), "::Z);")]
+        /// // The Sun seen from the Earth: about 68 μsr.
+        #[doc = concat!("let sun = Sphere::new(", stringify!($v3), "::new(1.496e11, 0.0, 0.0), 6.957e8)?;")]
+        #[doc = concat!("assert!((sun.solid_angle_from(", stringify!($v3), "::ZERO) - 6.794e-5).abs() < 1e-8);")]
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct Sphere {
+            center: V3,
+            radius: Real,
+        }
+
+        impl Sphere {
+            /// The sphere of `radius` > 0 about `center`. Errors name the
+            /// field: a non-finite center, a radius that is not finite and
+            /// positive.
+            pub fn new(center: V3, radius: Real) -> Result<Self, GeometryError> {
+                validate::finite3("center", wide3(center))?;
+                validate::positive("radius", radius as f64)?;
+                Ok(Sphere { center, radius })
+            }
+
+            /// The center.
+            #[inline]
+            pub fn center(&self) -> V3 {
+                self.center
+            }
+
+            /// The radius.
+            #[inline]
+            pub fn radius(&self) -> Real {
+                self.radius
+            }
+
+            /// The surface area 4πr², in m².
+            #[inline]
+            pub fn area(&self) -> Real {
+                4.0 * PI * self.radius * self.radius
+            }
+
+            /// Whether `point` is inside or on the sphere (|point − c| ≤ r):
+            /// there the sphere covers at least a hemisphere of directions.
+            #[inline]
+            pub fn contains(&self, point: V3) -> bool {
+                !((point - self.center).length() > self.radius)
+            }
+
+            /// The solid angle, in steradians, that the sphere subtends at
+            /// `point` (see the type's docs); 4π from inside or on it.
+            #[inline]
+            pub fn solid_angle_from(&self, point: V3) -> Real {
+                let d = (point - self.center).length();
+                let r = self.radius;
+                if !(d > r) {
+                    return 4.0 * PI;
+                }
+                let s = r / d;
+                let c = ((d - r) * (d + r)).sqrt() / d;
+                2.0 * PI * s * s / (1.0 + c)
+            }
+
+            /// The roots (near, far) of the ray's quadratic, if it meets the
+            /// sphere's surface at all.
+            #[inline]
+            fn roots(&self, ray: &Ray) -> Option<(Real, Real)> {
+                let v = ray.origin - self.center;
+                let b = v.dot(ray.direction);
+                let perp = v - ray.direction * b;
+                let disc = (self.radius - perp.length()) * (self.radius + perp.length());
+                if disc < 0.0 {
+                    return None;
+                }
+                let root = disc.sqrt();
+                let c = v.length_squared() - self.radius * self.radius;
+                // q = −(b + sign(b)·√disc); the roots are q and c/q.
+                let q = if b > 0.0 { -(b + root) } else { -b + root };
+                let other = if q != 0.0 { c / q } else { 0.0 };
+                Some(if q < other { (q, other) } else { (other, q) })
+            }
+        }
+
+        impl Intersect for Sphere {
+            #[inline]
+            fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real> {
+                let (t0, t1) = self.roots(ray)?;
+                let t = if t0 > 0.0 { t0 } else { t1 };
+                (t > 0.0 && t < t_max).then_some(t)
+            }
+
+            #[inline]
+            fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
+                let t = self.hit_distance(ray, t_max)?;
+                // Back onto the surface: |offset| = r up to one rounding.
+                let raw = ray.at(t) - self.center;
+                let offset = raw * (self.radius / raw.length());
+                let point = self.center + offset;
+                let error = offset.abs() * gamma(5) + point.abs() * gamma(1);
+                let normal = offset / self.radius;
+                let phi = normal.y.atan2(normal.x);
+                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+                let theta = normal.z.clamp(-1.0, 1.0).acos();
+                Some(Hit {
+                    distance: t,
+                    point,
+                    normal: normal.normalize(),
+                    error,
+                    uv: V2::new(phi / (2.0 * PI), theta / PI),
+                })
+            }
         }
     };
-    if t0 > 0.0 {
-        Some(t0)
-    } else if t1 > 0.0 {
-        Some(t1)
-    } else {
-        None
-    }
 }
+
+crate::both_precisions!(sphere_impl);
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use super::f64::Sphere;
+    use crate::f64::{Intersect, Ray};
+    use glam::DVec3;
 
     #[test]
     fn hits_misses_and_far_spheres() {
-        let t = ray_sphere(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, 10.0), 1.0).unwrap();
-        assert_eq!(t, 9.0);
-        assert!(ray_sphere(DVec3::ZERO, DVec3::X, DVec3::new(0.0, 0.0, 10.0), 1.0).is_none());
-        assert!(ray_sphere(DVec3::ZERO, -DVec3::Z, DVec3::new(0.0, 0.0, 10.0), 1.0).is_none());
+        let s = Sphere::new(DVec3::new(0.0, 0.0, 10.0), 1.0).unwrap();
+        let hit = |o: DVec3, d: DVec3| s.hit_distance(&Ray::new(o, d), f64::INFINITY);
+        assert_eq!(hit(DVec3::ZERO, DVec3::Z), Some(9.0));
+        assert_eq!(hit(DVec3::ZERO, DVec3::X), None);
+        assert_eq!(hit(DVec3::ZERO, -DVec3::Z), None);
+        assert_eq!(s.hit_distance(&Ray::new(DVec3::ZERO, DVec3::Z), 9.0), None);
         // 1e6 away: the near root keeps full relative precision.
-        let t = ray_sphere(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, 1e6), 1.0).unwrap();
-        assert_eq!(t, 1e6 - 1.0);
+        let far = Sphere::new(DVec3::new(0.0, 0.0, 1e6), 1.0).unwrap();
+        let t = far.hit_distance(&Ray::new(DVec3::ZERO, DVec3::Z), f64::INFINITY);
+        assert_eq!(t, Some(1e6 - 1.0));
         // From inside: the far root.
-        let t = ray_sphere(DVec3::ZERO, DVec3::Z, DVec3::ZERO, 2.0).unwrap();
-        assert_eq!(t, 2.0);
+        let big = Sphere::new(DVec3::ZERO, 2.0).unwrap();
+        let t = big.hit_distance(&Ray::new(DVec3::ZERO, DVec3::Z), f64::INFINITY);
+        assert_eq!(t, Some(2.0));
+    }
+
+    #[test]
+    fn hit_points_lie_within_their_error_bound_and_spawned_rays_leave() {
+        let s = Sphere::new(DVec3::new(0.3, -0.2, 5.0), 1.7).unwrap();
+        for i in 0..200 {
+            let a = i as f64 * 0.0137;
+            let d = DVec3::new(a.sin() * 0.3, a.cos() * 0.3, 1.0).normalize();
+            let Some(h) = s.intersect(&Ray::new(DVec3::ZERO, d), f64::INFINITY) else {
+                continue;
+            };
+            // The exact surface passes through the error box.
+            let off = ((h.point - s.center()).length() - s.radius()).abs();
+            assert!(off <= h.error.length(), "{off} > {}", h.error);
+            // Leaving outward (reflection) never re-hits the sphere.
+            let out = h.spawn_ray(h.normal);
+            assert_eq!(s.hit_distance(&out, f64::INFINITY), None);
+            // Entering (refraction) hits the far side, not the entry point.
+            let inward = h.spawn_ray(d);
+            let t = s.hit_distance(&inward, f64::INFINITY).unwrap();
+            assert!(t > 1e-6, "{t}");
+        }
+    }
+
+    #[test]
+    fn bad_input_names_the_field() {
+        let e = Sphere::new(DVec3::ZERO, -1.0).unwrap_err();
+        assert_eq!(e.to_string(), "radius: must be positive, got -1");
+        let e = Sphere::new(DVec3::new(f64::NAN, 0.0, 0.0), 1.0).unwrap_err();
+        assert_eq!(e.field(), "center");
+        assert!(Sphere::new(DVec3::ZERO, 0.0).is_err());
+        assert!(Sphere::new(DVec3::ZERO, f64::INFINITY).is_err());
+    }
+
+    #[test]
+    fn solid_angles_of_tiny_and_close_spheres() {
+        // 1e-8 rad: Ω = π θ² to rounding.
+        let s = Sphere::new(DVec3::new(0.0, 0.0, 1e8), 1.0).unwrap();
+        let o = s.solid_angle_from(DVec3::ZERO);
+        assert!((o / (std::f64::consts::PI * 1e-16) - 1.0).abs() < 1e-15);
+        // Touching: a hemisphere.
+        let near = Sphere::new(DVec3::new(0.0, 0.0, 1.0 + 1e-12), 1.0).unwrap();
+        let o = near.solid_angle_from(DVec3::ZERO);
+        assert!((o - 2.0 * std::f64::consts::PI).abs() < 1e-5);
+        assert_eq!(
+            near.solid_angle_from(DVec3::new(0.0, 0.0, 0.5)),
+            4.0 * std::f64::consts::PI
+        );
     }
 }

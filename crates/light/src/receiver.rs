@@ -2,7 +2,8 @@
 //! n·ω > 0 above it receives light).
 
 use glam::DVec3;
-use lambert_sampling::f64::Frame;
+use lambert_geometry::f64::{unit_vector, Frame};
+use lambert_geometry::validate;
 
 use crate::emitter::EmitterError;
 
@@ -21,8 +22,8 @@ impl Receiver {
     /// A receiver at `point` facing `normal` (any non-zero length; it is
     /// normalised). Errors name the field.
     pub fn new(point: DVec3, normal: DVec3) -> Result<Self, EmitterError> {
-        EmitterError::check_vector("receiver.point", point)?;
-        let normal = EmitterError::unit("receiver.normal", normal)?;
+        validate::finite3("receiver.point", point)?;
+        let normal = unit_vector("receiver.normal", normal)?;
         Ok(Receiver {
             point,
             normal,

@@ -1,9 +1,15 @@
 //! Uniform area sampling of a disk and of a parallelogram in 3-D, the
-//! building blocks of area-sampled lights. Convert their densities to solid
-//! angle with [`pdf_area_to_solid_angle`](crate::f64::pdf_area_to_solid_angle).
+//! building blocks of area-sampled lights, built from the shapes of
+//! `lambert-geometry`. Convert their densities to solid angle with
+//! [`pdf_area_to_solid_angle`](crate::f64::pdf_area_to_solid_angle).
 
 macro_rules! area_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::disk::$p::{invert_concentric_disk, sample_concentric_disk};
+        use crate::light_sample::$p::PointSample;
+        use lambert_geometry::precision::$p::{Real, V2, V3, PI};
+        use lambert_geometry::$p::{Disk, Frame, Parallelogram};
+
         /// A disk (center, unit normal, radius) sampled uniformly by area
         /// through the concentric map (density 1/(πR²) per m²).
         #[derive(Clone, Copy, Debug, PartialEq)]
@@ -14,28 +20,26 @@ macro_rules! area_impl {
         }
 
         impl UniformDiskArea {
-            /// The disk; `normal` need not be unit. Errors on non-finite
-            /// input, a zero normal or a radius ≤ 0.
-            pub fn new(center: V3, normal: V3, radius: Real) -> Result<Self, SamplingError> {
-                crate::error::finite3("center", widen(center))?;
-                crate::error::finite3("normal", widen(normal))?;
-                crate::error::finite("radius", radius as f64)?;
-                let len = normal.length();
-                if !(len > 0.0) || !len.is_finite() {
-                    return Err(SamplingError::ZeroVector { field: "normal" });
+            /// Area sampling of `disk`.
+            ///
+            /// ```
+            #[doc = concat!("use lambert_geometry::", stringify!($p), "::Disk;")]
+            #[doc = concat!("use lambert_sampling::", stringify!($p), "::UniformDiskArea;")]
+            #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+            #[doc = concat!("let disk = Disk::new(", stringify!($v3), "::Z, -", stringify!($v3), "::Z, 0.5)?;")]
+            /// let area = UniformDiskArea::new(&disk);
+            #[doc = concat!("let s = area.sample(", stringify!($v2), "::new(0.3, 0.7));")]
+            /// assert!((s.point.z - 1.0).abs() < 1e-6 && s.point.truncate().length() <= 0.5);
+            /// assert_eq!(area.pdf(s.point), s.pdf_area);
+            /// # Ok::<(), lambert_geometry::GeometryError>(())
+            /// ```
+            #[inline]
+            pub fn new(disk: &Disk) -> Self {
+                UniformDiskArea {
+                    center: disk.center(),
+                    frame: *disk.frame(),
+                    radius: disk.radius(),
                 }
-                if !(radius > 0.0) {
-                    return Err(SamplingError::OutOfRange {
-                        field: "radius",
-                        value: radius as f64,
-                        range: "(0, ∞)",
-                    });
-                }
-                Ok(UniformDiskArea {
-                    center,
-                    frame: Frame::from_normal(normal / len),
-                    radius,
-                })
             }
 
             /// The disk's area πR².
@@ -93,26 +97,28 @@ macro_rules! area_impl {
         }
 
         impl UniformParallelogram {
-            /// The parallelogram; its normal is edge0 × edge1 normalised.
-            /// Errors on non-finite input or parallel/zero edges.
-            pub fn new(corner: V3, edge0: V3, edge1: V3) -> Result<Self, SamplingError> {
-                crate::error::finite3("corner", widen(corner))?;
-                crate::error::finite3("edge0", widen(edge0))?;
-                crate::error::finite3("edge1", widen(edge1))?;
-                let n = edge0.cross(edge1);
-                let area = n.length();
-                if !(area > 0.0) || !area.is_finite() {
-                    return Err(SamplingError::Degenerate {
-                        what: "parallelogram with zero area (parallel or zero edges)",
-                    });
+            /// Area sampling of `parallelogram`.
+            ///
+            /// ```
+            #[doc = concat!("use lambert_geometry::", stringify!($p), "::Parallelogram;")]
+            #[doc = concat!("use lambert_sampling::", stringify!($p), "::UniformParallelogram;")]
+            #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+            #[doc = concat!("let quad = Parallelogram::new(", stringify!($v3), "::Z, ", stringify!($v3), "::X, ", stringify!($v3), "::Y)?;")]
+            /// let area = UniformParallelogram::new(&quad);
+            #[doc = concat!("let s = area.sample(", stringify!($v2), "::new(0.25, 0.5));")]
+            #[doc = concat!("assert_eq!(s.point, ", stringify!($v3), "::new(0.25, 0.5, 1.0));")]
+            /// assert_eq!(s.pdf_area, 1.0);
+            /// # Ok::<(), lambert_geometry::GeometryError>(())
+            /// ```
+            #[inline]
+            pub fn new(parallelogram: &Parallelogram) -> Self {
+                UniformParallelogram {
+                    corner: parallelogram.corner(),
+                    edge0: parallelogram.edge0(),
+                    edge1: parallelogram.edge1(),
+                    normal: parallelogram.normal(),
+                    area: parallelogram.area(),
                 }
-                Ok(UniformParallelogram {
-                    corner,
-                    edge0,
-                    edge1,
-                    normal: n / area,
-                    area,
-                })
             }
 
             /// The corner.
@@ -182,4 +188,4 @@ macro_rules! area_impl {
     };
 }
 
-crate::precision::both_precisions!(area_impl);
+lambert_geometry::both_precisions!(area_impl);

@@ -14,7 +14,11 @@
 //! s²/(1 + √(1 − s²)), from θmax as 2 sin²(θmax/2).
 
 macro_rules! cone_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::error::SamplingError;
+        use crate::spherical::$p::{azimuth_fraction, direction_from, one_minus_cos_theta};
+        use lambert_geometry::precision::$p::{Real, PI, V2, V3};
+
         /// The uniform density on a cone of directions about +z, described
         /// by h = 1 − cos θmax ∈ (0, 2].
         ///
@@ -155,4 +159,4 @@ macro_rules! cone_impl {
     };
 }
 
-crate::precision::both_precisions!(cone_impl);
+lambert_geometry::both_precisions!(cone_impl);

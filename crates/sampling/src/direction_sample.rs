@@ -1,7 +1,9 @@
 //! The named result of a direction sampler: a unit direction and its density.
 
 macro_rules! direction_sample_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use lambert_geometry::precision::$p::{Real, V3};
+
         /// A sampled unit direction `direction` together with the density
         /// `pdf` (per steradian) the sampler drew it with.
         #[derive(Clone, Copy, Debug, PartialEq)]
@@ -14,4 +16,4 @@ macro_rules! direction_sample_impl {
     };
 }
 
-crate::precision::both_precisions!(direction_sample_impl);
+lambert_geometry::both_precisions!(direction_sample_impl);

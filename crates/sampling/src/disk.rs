@@ -5,7 +5,11 @@
 //! Both have density 1/π per unit area on the unit disk.
 
 macro_rules! disk_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::spherical::$p::azimuth_fraction;
+        use crate::trig::$p::{sin_cos_2pi, sin_cos_quarter};
+        use lambert_geometry::precision::$p::{Real, PI, V2, V3};
+
         /// The concentric map in polar form: (r, sin φ, cos φ) with r ≥ 0.
         ///
         /// With a = 2u₀ − 1, b = 2u₁ − 1: if |a| > |b|, r = |a| and
@@ -98,4 +102,4 @@ macro_rules! disk_impl {
     };
 }
 
-crate::precision::both_precisions!(disk_impl);
+lambert_geometry::both_precisions!(disk_impl);

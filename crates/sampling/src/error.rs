@@ -35,6 +35,8 @@ pub enum SamplingError {
         /// What is degenerate, in words.
         what: &'static str,
     },
+    /// A shape the sampler is built from is invalid.
+    Geometry(lambert_geometry::GeometryError),
     /// The reference point is inside, or on, the light it should sample.
     InsideLight {
         /// Distance from the point to the light's center.
@@ -59,6 +61,7 @@ impl fmt::Display for SamplingError {
                 write!(f, "`{field}` must be a non-zero vector")
             }
             SamplingError::Degenerate { what } => write!(f, "degenerate geometry: {what}"),
+            SamplingError::Geometry(e) => write!(f, "{e}"),
             SamplingError::InsideLight { distance, radius } => write!(
                 f,
                 "the reference point is inside or on the sphere light \
@@ -70,6 +73,12 @@ impl fmt::Display for SamplingError {
 
 impl std::error::Error for SamplingError {}
 
+impl From<lambert_geometry::GeometryError> for SamplingError {
+    fn from(e: lambert_geometry::GeometryError) -> Self {
+        SamplingError::Geometry(e)
+    }
+}
+
 /// Checks that a scalar parameter is finite.
 pub(crate) fn finite(field: &'static str, value: f64) -> Result<(), SamplingError> {
     if value.is_finite() {
@@ -79,9 +88,10 @@ pub(crate) fn finite(field: &'static str, value: f64) -> Result<(), SamplingErro
     }
 }
 
-/// Checks that every component of a vector parameter is finite.
-pub(crate) fn finite3(field: &'static str, v: [f64; 3]) -> Result<(), SamplingError> {
-    for c in v {
+/// Checks that every component of a vector parameter (widened to f64) is
+/// finite.
+pub(crate) fn finite3(field: &'static str, v: glam::DVec3) -> Result<(), SamplingError> {
+    for c in v.to_array() {
         finite(field, c)?;
     }
     Ok(())

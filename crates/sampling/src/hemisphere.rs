@@ -7,7 +7,11 @@
 //! (Shirley & Chiu 1997; pbrt-v4 §A.5.3), which keeps its low distortion.
 
 macro_rules! hemisphere_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::disk::$p::{concentric_polar, invert_concentric_disk};
+        use crate::spherical::$p::{azimuth_fraction, direction_from, one_minus_cos_theta};
+        use lambert_geometry::precision::$p::{Real, ONE_MINUS_EPSILON, PI, V2, V3};
+
         /// A direction uniform on the upper hemisphere (cos θ ≥ 0):
         /// cos θ = 1 − u₀, sin θ = √(u₀(2 − u₀)), φ = 2πu₁.
         #[inline]
@@ -87,4 +91,4 @@ macro_rules! hemisphere_impl {
     };
 }
 
-crate::precision::both_precisions!(hemisphere_impl);
+lambert_geometry::both_precisions!(hemisphere_impl);

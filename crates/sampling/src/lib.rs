@@ -23,64 +23,73 @@
 //! assert!((pdf_cosine_hemisphere(w) - w.z / std::f64::consts::PI).abs() < 1e-15);
 //! ```
 
-pub(crate) mod precision;
-
-pub mod area;
-pub mod cone;
-pub mod direction_sample;
-pub mod disk;
+mod area;
+mod area_light;
+mod cone;
+mod direction_sample;
+mod discrete;
+mod disk;
 pub mod error;
-pub mod frame;
-pub mod hemisphere;
-pub mod light_sample;
+mod hemisphere;
+mod light_sample;
+mod light_sampler;
+mod polygon_light;
 pub mod sequence;
-pub mod sphere;
-pub mod sphere_light;
-pub mod spherical;
-pub mod spherical_rectangle;
-pub mod spherical_triangle;
-pub mod triangle;
-pub mod trig;
+mod sphere;
+mod sphere_light;
+mod spherical;
+mod spherical_rectangle;
+mod spherical_triangle;
+mod triangle;
+mod triangle_light;
+mod trig;
 
 pub use error::SamplingError;
-pub use sequence::{Independent, SampleSequence, Scramble, Sobol, SobolLayout, Stratified};
 
-/// Every f64 warp and helper (`DVec2`, `DVec3`).
+/// The public items of one precision, re-exported once (one path per item
+/// and precision).
+macro_rules! public_api {
+    ($p:ident) => {
+        pub use crate::area::$p::{UniformDiskArea, UniformParallelogram};
+        pub use crate::area_light::$p::{
+            DiskAreaSampler, PolygonAreaSampler, SphereAreaSampler, TriangleAreaSampler,
+        };
+        pub use crate::cone::$p::UniformCone;
+        pub use crate::direction_sample::$p::DirectionSample;
+        pub use crate::discrete::$p::pick_by_cumulative;
+        pub use crate::disk::$p::{
+            concentric_polar, invert_concentric_disk, invert_uniform_disk, pdf_concentric_disk,
+            pdf_uniform_disk, sample_concentric_disk, sample_uniform_disk,
+        };
+        pub use crate::hemisphere::$p::{
+            invert_cosine_hemisphere, invert_uniform_hemisphere, pdf_cosine_hemisphere,
+            pdf_uniform_hemisphere, sample_cosine_hemisphere, sample_cosine_hemisphere_batch,
+            sample_uniform_hemisphere, sample_uniform_hemisphere_batch,
+        };
+        pub use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
+        pub use crate::light_sampler::$p::{seen_from, LightSampler};
+        pub use crate::polygon_light::$p::{PolygonLightSampler, PolygonSolidAngle};
+        pub use crate::sphere::$p::{
+            invert_uniform_sphere, pdf_uniform_sphere, sample_uniform_sphere,
+            sample_uniform_sphere_batch,
+        };
+        pub use crate::sphere_light::$p::{SphereLightSampler, SphereSolidAngle};
+        pub use crate::spherical::$p::{azimuth_fraction, direction_from, one_minus_cos_theta};
+        pub use crate::spherical_rectangle::$p::SphericalRectangle;
+        pub use crate::spherical_triangle::$p::SphericalTriangle;
+        pub use crate::triangle::$p::UniformTriangle;
+        pub use crate::triangle_light::$p::{TriangleLightSampler, TriangleSolidAngle};
+        pub use crate::trig::$p::{sin_cos_2pi, sin_cos_quarter};
+    };
+}
+
+/// Every warp, sampler and helper in f64 (glam's `DVec2`, `DVec3`).
 pub mod f64 {
-    pub use crate::area::f64::*;
-    pub use crate::cone::f64::*;
-    pub use crate::direction_sample::f64::*;
-    pub use crate::disk::f64::*;
-    pub use crate::error::SamplingError;
-    pub use crate::frame::f64::*;
-    pub use crate::hemisphere::f64::*;
-    pub use crate::light_sample::f64::*;
-    pub use crate::sphere::f64::*;
-    pub use crate::sphere_light::f64::*;
-    pub use crate::spherical::f64::*;
-    pub use crate::spherical_rectangle::f64::*;
-    pub use crate::spherical_triangle::f64::*;
-    pub use crate::triangle::f64::*;
-    pub use crate::trig::f64::*;
+    public_api!(f64);
 }
 
-/// Every f32 warp and helper (`Vec2`, `Vec3`), for path tracers.
+/// Every warp, sampler and helper in f32 (glam's `Vec2`, `Vec3`), from the
+/// same source as [`mod@f64`], for path tracers.
 pub mod f32 {
-    pub use crate::area::f32::*;
-    pub use crate::cone::f32::*;
-    pub use crate::direction_sample::f32::*;
-    pub use crate::disk::f32::*;
-    pub use crate::error::SamplingError;
-    pub use crate::frame::f32::*;
-    pub use crate::hemisphere::f32::*;
-    pub use crate::light_sample::f32::*;
-    pub use crate::sphere::f32::*;
-    pub use crate::sphere_light::f32::*;
-    pub use crate::spherical::f32::*;
-    pub use crate::spherical_rectangle::f32::*;
-    pub use crate::spherical_triangle::f32::*;
-    pub use crate::triangle::f32::*;
-    pub use crate::trig::f32::*;
+    public_api!(f32);
 }
-
-pub use crate::f64::*;

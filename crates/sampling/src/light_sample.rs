@@ -1,7 +1,9 @@
 //! The named results of geometry-dependent samplers.
 
 macro_rules! light_sample_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use lambert_geometry::precision::$p::{Real, V3};
+
         /// A direction sampled toward a light, with what a shading loop needs
         /// next: the density per steradian, the point hit on the light, and
         /// its distance from the reference point.
@@ -63,4 +65,4 @@ macro_rules! light_sample_impl {
     };
 }
 
-crate::precision::both_precisions!(light_sample_impl);
+lambert_geometry::both_precisions!(light_sample_impl);

@@ -3,7 +3,10 @@
 //! §A.5.1).
 
 macro_rules! sphere_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::spherical::$p::{azimuth_fraction, direction_from, one_minus_cos_theta};
+        use lambert_geometry::precision::$p::{Real, PI, V2, V3};
+
         /// A direction uniform on the unit sphere: cos θ = 1 − 2u₀,
         /// sin θ = 2√(u₀(1 − u₀)) (no cancellation near the poles), φ = 2πu₁.
         #[inline]
@@ -40,4 +43,4 @@ macro_rules! sphere_impl {
     };
 }
 
-crate::precision::both_precisions!(sphere_impl);
+lambert_geometry::both_precisions!(sphere_impl);

@@ -17,7 +17,16 @@
 //! the ray–sphere quadratic written without cancellation.
 
 macro_rules! sphere_light_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use lambert_geometry::precision::$p::{Real, V2, V3, wide3};
+        use crate::cone::$p::UniformCone;
+        use crate::light_sample::$p::LightSample;
+        use crate::spherical::$p::one_minus_cos_theta;
+        use lambert_geometry::$p::Frame;
+        use crate::error::SamplingError;
+        use crate::light_sampler::$p::LightSampler;
+        use lambert_geometry::$p::Sphere;
+
         /// Solid-angle sampling of the sphere (`center`, `radius`) as seen
         /// from `reference`; see the module docs for the formulas.
         #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,23 +42,29 @@ macro_rules! sphere_light_impl {
         }
 
         impl SphereSolidAngle {
-            /// Prepares sampling of the sphere seen from `reference`.
+            /// Prepares sampling of `sphere` seen from `reference`.
             ///
-            /// Errors: non-finite inputs, radius ≤ 0, or a reference point
-            /// inside or on the sphere ([`SamplingError::InsideLight`]: there
-            /// the sphere covers at least a hemisphere of directions and
-            /// cone sampling does not apply).
-            pub fn new(reference: V3, center: V3, radius: Real) -> Result<Self, SamplingError> {
-                crate::error::finite3("reference", widen(reference))?;
-                crate::error::finite3("center", widen(center))?;
-                crate::error::finite("radius", radius as f64)?;
-                if !(radius > 0.0) {
-                    return Err(SamplingError::OutOfRange {
-                        field: "radius",
-                        value: radius as f64,
-                        range: "(0, ∞)",
-                    });
-                }
+            /// Errors: a non-finite reference point, or one inside or on
+            /// the sphere ([`SamplingError::InsideLight`]: there the sphere
+            /// covers at least a hemisphere of directions and cone sampling
+            /// does not apply).
+            ///
+            /// ```
+            #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]
+            #[doc = concat!("use lambert_sampling::", stringify!($p), "::SphereSolidAngle;")]
+            #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+            /// // A sphere of radius 1 at distance 10, 30° from +z.
+            #[doc = concat!("let sphere = Sphere::new(", stringify!($v3), "::new(5.0, 0.0, 8.660254), 1.0)?;")]
+            #[doc = concat!("let cone = SphereSolidAngle::new(", stringify!($v3), "::ZERO, &sphere)?;")]
+            #[doc = concat!("let s = cone.sample(", stringify!($v2), "::new(0.25, 0.5));")]
+            /// assert!((s.pdf * cone.solid_angle() - 1.0).abs() < 1e-6);
+            /// assert!(((s.point - sphere.center()).length() - 1.0).abs() < 1e-5);
+            /// assert_eq!(cone.pdf(s.direction), s.pdf);
+            /// # Ok::<(), Box<dyn std::error::Error>>(())
+            /// ```
+            pub fn new(reference: V3, sphere: &Sphere) -> Result<Self, SamplingError> {
+                crate::error::finite3("reference", wide3(reference))?;
+                let (center, radius) = (sphere.center(), sphere.radius());
                 let axis = center - reference;
                 let distance = axis.length();
                 if !(distance > radius) {
@@ -165,27 +180,109 @@ macro_rules! sphere_light_impl {
                 }
             }
 
+            /// The sphere's center.
+            #[inline]
+            pub fn center(&self) -> V3 {
+                self.center
+            }
+
             /// The u that [`SphereSolidAngle::sample`] maps to `w`.
             #[inline]
             pub fn invert(&self, w: V3) -> V2 {
                 self.cone.invert(self.frame.to_local(w))
             }
         }
+
+        /// Solid-angle sampling of a sphere light from any shading point:
+        /// built once per light, [`SphereSolidAngle`] at each point (uniform
+        /// in the subtended cone, Shirley, Wang & Zimmerman 1996), no
+        /// allocation.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{LightSampler, SphereLightSampler};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let light = SphereLightSampler::new(Sphere::new(", stringify!($v3), "::new(3.0, 0.0, 4.0), 1.0)?);")]
+        #[doc = concat!("let s = light.sample(", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z, ", stringify!($v2), "::new(0.1, 0.9)).unwrap();")]
+        /// assert!(s.distance > 3.9 && s.distance < 5.0);
+        /// // A shading point whose horizon hides the whole sphere gets none.
+        #[doc = concat!("assert!(light.sample(", stringify!($v3), "::ZERO, -", stringify!($v3), "::Z, ", stringify!($v2), "::new(0.1, 0.9)).is_none());")]
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct SphereLightSampler {
+            sphere: Sphere,
+        }
+
+        impl SphereLightSampler {
+            /// The sampler of `sphere`.
+            #[inline]
+            pub fn new(sphere: Sphere) -> Self {
+                SphereLightSampler { sphere }
+            }
+
+            /// The sphere.
+            #[inline]
+            pub fn sphere(&self) -> &Sphere {
+                &self.sphere
+            }
+
+            /// The cone sampler at `reference` (for many samples at one
+            /// point); see [`SphereSolidAngle::new`] for the errors.
+            #[inline]
+            pub fn at(&self, reference: V3) -> Result<SphereSolidAngle, SamplingError> {
+                SphereSolidAngle::new(reference, &self.sphere)
+            }
+
+            /// Whether the sphere lies wholly on or below the horizon of
+            /// (`reference`, `normal`).
+            #[inline]
+            fn below(&self, reference: V3, normal: V3) -> bool {
+                normal.dot(self.sphere.center() - reference) + self.sphere.radius() <= 0.0
+            }
+        }
+
+        impl LightSampler for SphereLightSampler {
+            #[inline]
+            fn sample(&self, reference: V3, normal: V3, u: V2) -> Option<LightSample> {
+                if self.below(reference, normal) {
+                    return None;
+                }
+                self.at(reference).ok().map(|cone| cone.sample(u))
+            }
+
+            #[inline]
+            fn pdf(&self, reference: V3, normal: V3, direction: V3) -> Real {
+                if self.below(reference, normal) {
+                    return 0.0;
+                }
+                self.at(reference).map_or(0.0, |cone| cone.pdf(direction))
+            }
+        }
     };
 }
 
-crate::precision::both_precisions!(sphere_light_impl);
+lambert_geometry::both_precisions!(sphere_light_impl);
 
 #[cfg(test)]
 mod tests {
     use super::f64::SphereSolidAngle;
     use crate::SamplingError;
     use glam::{DVec2, DVec3};
+    use lambert_geometry::f64::Sphere;
+
+    fn cone(
+        reference: DVec3,
+        center: DVec3,
+        radius: f64,
+    ) -> Result<SphereSolidAngle, SamplingError> {
+        SphereSolidAngle::new(reference, &Sphere::new(center, radius)?)
+    }
 
     #[test]
     fn points_lie_on_the_near_side_at_the_reported_distance() {
         let center = DVec3::new(3.0, -1.0, 8.0);
-        let s = SphereSolidAngle::new(DVec3::ZERO, center, 1.5).unwrap();
+        let s = cone(DVec3::ZERO, center, 1.5).unwrap();
         for i in 0..=16 {
             for j in 0..=16 {
                 let u = DVec2::new(i as f64 / 16.0, j as f64 / 16.0);
@@ -202,15 +299,18 @@ mod tests {
 
     #[test]
     fn inside_or_on_the_sphere_is_a_clear_error() {
-        let on = SphereSolidAngle::new(DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0), 2.0);
+        let on = cone(DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0), 2.0);
         assert!(matches!(on, Err(SamplingError::InsideLight { .. })));
-        let inside = SphereSolidAngle::new(DVec3::ZERO, DVec3::new(0.0, 0.0, 1.0), 2.0);
+        let inside = cone(DVec3::ZERO, DVec3::new(0.0, 0.0, 1.0), 2.0);
         let e = inside.unwrap_err();
         assert!(
             e.to_string().contains("inside or on the sphere light"),
             "{e}"
         );
-        assert!(SphereSolidAngle::new(DVec3::ZERO, DVec3::Z * 5.0, -1.0).is_err());
-        assert!(SphereSolidAngle::new(DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 5.0), 1.0).is_err());
+        assert!(cone(DVec3::ZERO, DVec3::Z * 5.0, -1.0).is_err());
+        assert!(cone(DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 5.0), 1.0).is_err());
+        let unit = Sphere::new(DVec3::Z * 5.0, 1.0).unwrap();
+        let e = SphereSolidAngle::new(DVec3::new(0.0, f64::INFINITY, 0.0), &unit).unwrap_err();
+        assert!(e.to_string().contains("reference"), "{e}");
     }
 }

@@ -2,7 +2,10 @@
 //! +x), computed without cancellation where it matters.
 
 macro_rules! spherical_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::trig::$p::sin_cos_2pi;
+        use lambert_geometry::precision::$p::{Real, PI, V3};
+
         /// 1 − cos θ of the unit vector `w` about +z, without cancellation.
         ///
         /// For w_z > 0 it uses 1 − w_z = (w_x² + w_y²)/(1 + w_z), exact
@@ -42,4 +45,4 @@ macro_rules! spherical_impl {
     };
 }
 
-crate::precision::both_precisions!(spherical_impl);
+lambert_geometry::both_precisions!(spherical_impl);

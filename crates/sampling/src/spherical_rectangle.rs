@@ -47,7 +47,13 @@
 //! y₀ < 0: again only sums of non-negative terms.
 
 macro_rules! spherical_rectangle_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::direction_sample::$p::DirectionSample;
+        use crate::error::SamplingError;
+        use crate::light_sample::$p::LightSample;
+        use lambert_geometry::precision::$p::{wide3, Real, PI, V2, V3};
+        use lambert_geometry::$p::solid_angle_van_oosterom;
+
         /// The pieces of [a, a + w] on either side of 0, each reflected to
         /// non-negative coordinates, as (start, width); an absent piece has
         /// width 0. Solid angles of strips and rectangles at z = −d are
@@ -174,7 +180,7 @@ macro_rules! spherical_rectangle_impl {
                     ("edge0", edge0),
                     ("edge1", edge1),
                 ] {
-                    crate::error::finite3(field, [v.x as f64, v.y as f64, v.z as f64])?;
+                    crate::error::finite3(field, wide3(v))?;
                 }
                 let (l0, l1) = (edge0.length(), edge1.length());
                 if !(l0 > 0.0 && l0.is_finite()) {
@@ -413,7 +419,7 @@ macro_rules! spherical_rectangle_impl {
     };
 }
 
-crate::precision::both_precisions!(spherical_rectangle_impl);
+lambert_geometry::both_precisions!(spherical_rectangle_impl);
 
 #[cfg(test)]
 mod tests {
@@ -556,8 +562,10 @@ mod tests {
         ($m:ident) => {
             mod $m {
                 use super::*;
-                use crate::precision::$m::*;
                 use crate::$m::*;
+                use lambert_geometry::precision::$m::{
+                    narrow3, wide3, Real, ONE_MINUS_EPSILON, V2, V3,
+                };
 
                 fn case(g: [DVec3; 4]) -> ([V3; 4], [DVec3; 4]) {
                     let r = g.map(narrow3);

@@ -46,36 +46,11 @@
 //! unit vectors, so they are accurate to a few ulps for tiny triangles.
 
 macro_rules! spherical_triangle_impl {
-    () => {
-        /// The solid angle Ω, in steradians, of the triangle with vertices
-        /// `R0`, `R1`, `R2` (relative to the viewpoint) whose triple product
-        /// R₀·(R₁×R₂) the caller has computed without cancellation as
-        /// `triple` (its sign is ignored).
-        ///
-        /// Van Oosterom & Strackee (1983):
-        /// Ω = 2 atan2(|triple|, r₀r₁r₂ + (R₀·R₁)r₂ + (R₀·R₂)r₁ + (R₁·R₂)r₀).
-        /// Accurate to a few ulps relative for small triangles and to a few
-        /// ulps absolute (of 2π) for huge ones.
-        #[inline]
-        pub fn solid_angle_van_oosterom(r0: V3, r1: V3, r2: V3, triple: Real) -> Real {
-            let (l0, l1, l2) = (r0.length(), r1.length(), r2.length());
-            let den = l0 * l1 * l2 + r0.dot(r1) * l2 + r0.dot(r2) * l1 + r1.dot(r2) * l0;
-            2.0 * triple.abs().atan2(den)
-        }
-
-        /// The solid angle, in steradians, that the triangle `v0 v1 v2`
-        /// subtends at `p` (Van Oosterom & Strackee 1983; see
-        /// [`solid_angle_van_oosterom`]). The triple product is taken from
-        /// the edges, (v₀ − p)·((v₁ − v₀)×(v₂ − v₀)), so tiny and distant
-        /// triangles keep full relative precision; triangles covering up to
-        /// a hemisphere and beyond are handled by the atan2. Returns 0 for a
-        /// degenerate triangle or one whose plane contains `p`.
-        #[inline]
-        pub fn spherical_triangle_solid_angle(p: V3, v0: V3, v1: V3, v2: V3) -> Real {
-            let r0 = v0 - p;
-            let triple = r0.dot((v1 - v0).cross(v2 - v0));
-            solid_angle_van_oosterom(r0, v1 - p, v2 - p, triple)
-        }
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::direction_sample::$p::DirectionSample;
+        use crate::error::SamplingError;
+        use lambert_geometry::precision::$p::{wide3, Real, V2, V3};
+        use lambert_geometry::$p::solid_angle_van_oosterom;
 
         /// The uniform density over the directions that a triangle
         /// subtends at a point: p(ω) = 1/Ω per steradian inside the
@@ -119,7 +94,7 @@ macro_rules! spherical_triangle_impl {
             /// ([`SamplingError::Degenerate`]).
             pub fn new(p: V3, v0: V3, v1: V3, v2: V3) -> Result<Self, SamplingError> {
                 for (field, v) in [("p", p), ("v0", v0), ("v1", v1), ("v2", v2)] {
-                    crate::error::finite3(field, [v.x as f64, v.y as f64, v.z as f64])?;
+                    crate::error::finite3(field, wide3(v))?;
                 }
                 let (mut v1, mut v2) = (v1, v2);
                 let r0 = v0 - p;
@@ -327,7 +302,7 @@ macro_rules! spherical_triangle_impl {
     };
 }
 
-crate::precision::both_precisions!(spherical_triangle_impl);
+lambert_geometry::both_precisions!(spherical_triangle_impl);
 
 #[cfg(test)]
 mod tests {
@@ -527,8 +502,10 @@ mod tests {
         ($m:ident) => {
             mod $m {
                 use super::*;
-                use crate::precision::$m::*;
                 use crate::$m::*;
+                use lambert_geometry::precision::$m::{
+                    narrow3, wide3, Real, ONE_MINUS_EPSILON, V2, V3,
+                };
 
                 /// The case rounded to this precision, and widened back (so
                 /// f64 references see exactly the same inputs).
@@ -558,7 +535,7 @@ mod tests {
                         let tri = SphericalTriangle::new(r[0], r[1], r[2], r[3]).unwrap();
                         let omega = tri.solid_angle() as f64;
                         let omega64 =
-                            crate::f64::spherical_triangle_solid_angle(w[0], w[1], w[2], w[3]);
+                            lambert_geometry::f64::triangle_solid_angle(w[0], w[1], w[2], w[3]);
                         // Same inputs: only this precision's rounding, a
                         // few tens of ulps relative.
                         let rel = (omega - omega64).abs() / omega64;

@@ -5,7 +5,11 @@
 //! unit area, inverse u₀ = (1 − b₀)², u₁ = b₁/(1 − b₀).
 
 macro_rules! triangle_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use lambert_geometry::precision::$p::{Real, V2, V3};
+        use crate::light_sample::$p::PointSample;
+        use lambert_geometry::$p::Triangle;
+
         /// A planar triangle sampled uniformly by area (density 1/A per m²).
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct UniformTriangle {
@@ -17,29 +21,29 @@ macro_rules! triangle_impl {
         }
 
         impl UniformTriangle {
-            /// The triangle (v0, v1, v2); its normal is (v1 − v0) × (v2 − v0)
-            /// normalised (right-hand rule). Errors on non-finite vertices or
-            /// zero area.
-            pub fn new(v0: V3, v1: V3, v2: V3) -> Result<Self, SamplingError> {
-                crate::error::finite3("v0", widen(v0))?;
-                crate::error::finite3("v1", widen(v1))?;
-                crate::error::finite3("v2", widen(v2))?;
-                let e1 = v1 - v0;
-                let e2 = v2 - v0;
-                let n = e1.cross(e2);
-                let len = n.length();
-                if !(len > 0.0) || !len.is_finite() {
-                    return Err(SamplingError::Degenerate {
-                        what: "triangle with zero area",
-                    });
-                }
-                Ok(UniformTriangle {
+            /// Area sampling of `triangle`.
+            ///
+            /// ```
+            #[doc = concat!("use lambert_geometry::", stringify!($p), "::Triangle;")]
+            #[doc = concat!("use lambert_sampling::", stringify!($p), "::UniformTriangle;")]
+            #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+            #[doc = concat!("let t = Triangle::new(", stringify!($v3), "::ZERO, ", stringify!($v3), "::X, ", stringify!($v3), "::Y)?;")]
+            /// let area = UniformTriangle::new(&t);
+            #[doc = concat!("let s = area.sample(", stringify!($v2), "::new(0.5, 0.5));")]
+            /// assert!(s.point.x + s.point.y <= 1.0 && s.pdf_area == 2.0);
+            /// assert_eq!(area.pdf(s.point), 2.0);
+            /// # Ok::<(), lambert_geometry::GeometryError>(())
+            /// ```
+            #[inline]
+            pub fn new(triangle: &Triangle) -> Self {
+                let [v0, v1, v2] = triangle.vertices();
+                UniformTriangle {
                     v0,
-                    e1,
-                    e2,
-                    normal: n / len,
-                    area: 0.5 * len,
-                })
+                    e1: v1 - v0,
+                    e2: v2 - v0,
+                    normal: triangle.normal(),
+                    area: triangle.area(),
+                }
             }
 
             /// The triangle's area.
@@ -130,4 +134,4 @@ macro_rules! triangle_impl {
     };
 }
 
-crate::precision::both_precisions!(triangle_impl);
+lambert_geometry::both_precisions!(triangle_impl);

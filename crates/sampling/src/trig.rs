@@ -16,8 +16,59 @@
 //! The same polynomials serve the concentric disk, whose angle is already
 //! within [−π/4, π/4] ([`sin_cos_quarter`](crate::f64::sin_cos_quarter) of each precision).
 
+/// The Taylor coefficients each precision uses (see the module docs).
+mod taylor {
+    /// f64: to x¹⁶ for sin x / x and cos x.
+    pub(super) mod f64 {
+        type Real = f64;
+        /// Taylor coefficients of sin x / x in x², to x¹⁶ (see `trig`).
+        pub const SIN_TAYLOR: [Real; 9] = [
+            1.0,
+            -1.0 / 6.0,
+            1.0 / 120.0,
+            -1.0 / 5040.0,
+            1.0 / 362880.0,
+            -1.0 / 39916800.0,
+            1.0 / 6227020800.0,
+            -1.0 / 1307674368000.0,
+            1.0 / 355687428096000.0,
+        ];
+        /// Taylor coefficients of cos x in x², to x¹⁶ (see `trig`).
+        pub const COS_TAYLOR: [Real; 9] = [
+            1.0,
+            -1.0 / 2.0,
+            1.0 / 24.0,
+            -1.0 / 720.0,
+            1.0 / 40320.0,
+            -1.0 / 3628800.0,
+            1.0 / 479001600.0,
+            -1.0 / 87178291200.0,
+            1.0 / 20922789888000.0,
+        ];
+    }
+    /// f32: to x⁸ for sin x / x, x¹⁰ for cos x.
+    pub(super) mod f32 {
+        type Real = f32;
+        /// Taylor coefficients of sin x / x in x², to x⁸ (see `trig`).
+        pub const SIN_TAYLOR: [Real; 5] =
+            [1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0];
+        /// Taylor coefficients of cos x in x², to x¹⁰ (see `trig`).
+        pub const COS_TAYLOR: [Real; 6] = [
+            1.0,
+            -1.0 / 2.0,
+            1.0 / 24.0,
+            -1.0 / 720.0,
+            1.0 / 40320.0,
+            -1.0 / 3628800.0,
+        ];
+    }
+}
+
 macro_rules! trig_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use super::taylor::$p::{COS_TAYLOR, SIN_TAYLOR};
+        use lambert_geometry::precision::$p::{Real, PI};
+
         /// (sin x, cos x) for x ∈ [−π/4, π/4], by Estrin evaluation of the
         /// Taylor series in x² (truncation error below half an ulp on that
         /// interval).
@@ -80,7 +131,7 @@ macro_rules! trig_impl {
     };
 }
 
-crate::precision::both_precisions!(trig_impl);
+lambert_geometry::both_precisions!(trig_impl);
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,8 @@
 //! Properties every `SampleSequence` must have, checked through the trait.
 
-use lambert_sampling::{Independent, SampleSequence, Scramble, Sobol, SobolLayout, Stratified};
+use lambert_sampling::sequence::{
+    Independent, SampleSequence, Scramble, Sobol, SobolLayout, Stratified,
+};
 
 type Sample = ([f64; 2], f64, [f32; 2], f32);
 

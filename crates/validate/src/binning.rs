@@ -13,7 +13,8 @@
 
 use crate::ChiSquareError;
 use glam::DVec3;
-use lambert_sampling::f64::{azimuth_fraction, one_minus_cos_theta, Frame};
+use lambert_geometry::f64::Frame;
+use lambert_sampling::f64::{azimuth_fraction, one_minus_cos_theta};
 use std::f64::consts::PI;
 
 /// Relative allowance at the rim of a cap: a direction with

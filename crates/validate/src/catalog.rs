@@ -209,7 +209,7 @@ fn cap_of_points(points: &[DVec3]) -> Option<BoundingCap> {
         .map(|p| p.normalize())
         .sum::<DVec3>()
         .normalize();
-    let frame = lambert_sampling::f64::Frame::from_normal(axis);
+    let frame = lambert_geometry::f64::Frame::from_normal(axis);
     let h = points
         .iter()
         .map(|p| lambert_sampling::f64::one_minus_cos_theta(frame.to_local(p.normalize())))
@@ -222,8 +222,18 @@ fn cap_of_points(points: &[DVec3]) -> Option<BoundingCap> {
 }
 
 macro_rules! catalog_impl {
-    () => {
+    ($p:ident) => {
         use glam::{DVec2, DVec3};
+        use lambert_geometry::precision::$p::{narrow2, narrow3, wide2, wide3, Real, V3};
+        use lambert_geometry::$p::{Disk, Intersect, Parallelogram, Plane, Ray, Sphere, Triangle};
+        use lambert_sampling::$p::{
+            invert_cosine_hemisphere, invert_uniform_hemisphere, invert_uniform_sphere,
+            pdf_area_to_solid_angle, pdf_cosine_hemisphere, pdf_uniform_hemisphere,
+            pdf_uniform_sphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
+            sample_uniform_sphere, PointSample, SphereSolidAngle, SphericalRectangle,
+            SphericalTriangle, UniformCone, UniformDiskArea, UniformParallelogram, UniformTriangle,
+        };
+        use lambert_sampling::SamplingError;
 
         enum Built {
             UniformHemisphere,
@@ -233,18 +243,30 @@ macro_rules! catalog_impl {
             SphereLight(SphereSolidAngle),
             SphericalTriangle(SphericalTriangle),
             SphericalRectangle(SphericalRectangle),
-            TriangleArea(UniformTriangle),
-            DiskArea(UniformDiskArea, V3, V3),
-            ParallelogramArea(UniformParallelogram),
+            TriangleArea(UniformTriangle, Plane),
+            DiskArea(UniformDiskArea, Plane),
+            ParallelogramArea(UniformParallelogram, Plane),
         }
 
-        /// The point where the ray from the origin along `w` meets the plane
-        /// through `on_plane` with normal `normal`, if in front.
+        /// The point where the ray from the origin along `w` meets the
+        /// area light's plane, if in front. The area samplers' own densities
+        /// decide whether it lies on the light (with their rounding slack at
+        /// the rim, which an exact containment test would not have).
         #[inline]
-        fn hit_plane(w: V3, on_plane: V3, normal: V3) -> Option<V3> {
-            let denom = normal.dot(w);
-            let t = normal.dot(on_plane) / denom;
-            (t > 0.0 && t.is_finite()).then(|| w * t)
+        fn hit_plane(w: V3, plane: &Plane) -> Option<V3> {
+            plane
+                .hit_distance(&Ray::new(V3::ZERO, w), Real::INFINITY)
+                .map(|t| w * t)
+        }
+
+        /// The solid-angle density at the origin of direction `w` toward an
+        /// area light of density `pdf_area` (per m², at the point hit).
+        #[inline]
+        fn area_pdf(w: V3, plane: &Plane, pdf_area: impl Fn(V3) -> Real) -> Real {
+            match hit_plane(w, plane) {
+                Some(p) => pdf_area_to_solid_angle(pdf_area(p), V3::ZERO, p, plane.normal()),
+                None => 0.0,
+            }
         }
 
         /// Direction and solid-angle density of an area sample seen from
@@ -258,15 +280,16 @@ macro_rules! catalog_impl {
             )
         }
 
-        /// Errors when the origin lies in the plane of an area light (it
-        /// would be seen edge-on, with no solid angle).
-        fn not_edge_on(normal: V3, on_plane: V3) -> Result<(), SamplingError> {
-            if normal.dot(on_plane) == 0.0 {
+        /// The plane of an area light, which must not contain the origin
+        /// (the light would be seen edge-on, with no solid angle).
+        fn plane_seen_from_origin(on_plane: V3, normal: V3) -> Result<Plane, SamplingError> {
+            let plane = Plane::new(on_plane, normal)?;
+            if plane.signed_distance(V3::ZERO) == 0.0 {
                 Err(SamplingError::Degenerate {
                     what: "the origin lies in the light's plane (seen edge-on)",
                 })
             } else {
-                Ok(())
+                Ok(plane)
             }
         }
 
@@ -285,8 +308,7 @@ macro_rules! catalog_impl {
                 )?),
                 S::SphereLight { center, radius } => Built::SphereLight(SphereSolidAngle::new(
                     V3::ZERO,
-                    narrow3(*center),
-                    *radius as Real,
+                    &Sphere::new(narrow3(*center), *radius as Real)?,
                 )?),
                 S::SphericalTriangle { vertices } => {
                     Built::SphericalTriangle(SphericalTriangle::new(
@@ -307,37 +329,32 @@ macro_rules! catalog_impl {
                     narrow3(*edge1),
                 )?),
                 S::TriangleArea { vertices } => {
-                    let tri = UniformTriangle::new(
+                    let tri = Triangle::new(
                         narrow3(vertices[0]),
                         narrow3(vertices[1]),
                         narrow3(vertices[2]),
                     )?;
-                    not_edge_on(tri.normal(), narrow3(vertices[0]))?;
-                    Built::TriangleArea(tri)
+                    let plane = plane_seen_from_origin(tri.vertices()[0], tri.normal())?;
+                    Built::TriangleArea(UniformTriangle::new(&tri), plane)
                 }
                 S::DiskArea {
                     center,
                     normal,
                     radius,
                 } => {
-                    let disk =
-                        UniformDiskArea::new(narrow3(*center), narrow3(*normal), *radius as Real)?;
-                    let n = narrow3(*normal).normalize();
-                    not_edge_on(n, narrow3(*center))?;
-                    Built::DiskArea(disk, narrow3(*center), n)
+                    let disk = Disk::new(narrow3(*center), narrow3(*normal), *radius as Real)?;
+                    let plane = plane_seen_from_origin(disk.center(), disk.normal())?;
+                    Built::DiskArea(UniformDiskArea::new(&disk), plane)
                 }
                 S::ParallelogramArea {
                     corner,
                     edge0,
                     edge1,
                 } => {
-                    let par = UniformParallelogram::new(
-                        narrow3(*corner),
-                        narrow3(*edge0),
-                        narrow3(*edge1),
-                    )?;
-                    not_edge_on(narrow3(edge0.cross(*edge1)), narrow3(*corner))?;
-                    Built::ParallelogramArea(par)
+                    let par =
+                        Parallelogram::new(narrow3(*corner), narrow3(*edge0), narrow3(*edge1))?;
+                    let plane = plane_seen_from_origin(par.corner(), par.normal())?;
+                    Built::ParallelogramArea(UniformParallelogram::new(&par), plane)
                 }
             };
             Ok(Box::new(built))
@@ -375,9 +392,9 @@ macro_rules! catalog_impl {
                         let d = s.sample(u);
                         (d.direction, d.pdf)
                     }
-                    Built::TriangleArea(a) => seen_from_origin(a.sample(u)),
-                    Built::DiskArea(a, _, _) => seen_from_origin(a.sample(u)),
-                    Built::ParallelogramArea(a) => seen_from_origin(a.sample(u)),
+                    Built::TriangleArea(a, _) => seen_from_origin(a.sample(u)),
+                    Built::DiskArea(a, _) => seen_from_origin(a.sample(u)),
+                    Built::ParallelogramArea(a, _) => seen_from_origin(a.sample(u)),
                 };
                 lambert_sampling::f64::DirectionSample {
                     direction: wide3(direction),
@@ -395,18 +412,9 @@ macro_rules! catalog_impl {
                     Built::SphereLight(s) => s.pdf(w),
                     Built::SphericalTriangle(s) => s.pdf(w),
                     Built::SphericalRectangle(s) => s.pdf(w),
-                    Built::TriangleArea(a) => match hit_plane(w, a.vertex0(), a.normal()) {
-                        Some(p) => pdf_area_to_solid_angle(a.pdf(p), V3::ZERO, p, a.normal()),
-                        None => 0.0,
-                    },
-                    Built::DiskArea(a, c, n) => match hit_plane(w, *c, *n) {
-                        Some(p) => pdf_area_to_solid_angle(a.pdf(p), V3::ZERO, p, *n),
-                        None => 0.0,
-                    },
-                    Built::ParallelogramArea(a) => match hit_plane(w, a.corner(), a.normal()) {
-                        Some(p) => pdf_area_to_solid_angle(a.pdf(p), V3::ZERO, p, a.normal()),
-                        None => 0.0,
-                    },
+                    Built::TriangleArea(a, plane) => area_pdf(w, plane, |p| a.pdf(p)),
+                    Built::DiskArea(a, plane) => area_pdf(w, plane, |p| a.pdf(p)),
+                    Built::ParallelogramArea(a, plane) => area_pdf(w, plane, |p| a.pdf(p)),
                 }) as f64
             }
 
@@ -420,12 +428,14 @@ macro_rules! catalog_impl {
                     Built::SphereLight(s) => s.invert(w),
                     Built::SphericalTriangle(s) => s.invert(w),
                     Built::SphericalRectangle(s) => s.invert(w),
-                    Built::TriangleArea(a) => {
-                        a.invert(hit_plane(w, a.vertex0(), a.normal()).unwrap_or(V3::ZERO))
+                    Built::TriangleArea(a, plane) => {
+                        a.invert(hit_plane(w, plane).unwrap_or(plane.point()))
                     }
-                    Built::DiskArea(a, c, n) => a.invert(hit_plane(w, *c, *n).unwrap_or(*c)),
-                    Built::ParallelogramArea(a) => {
-                        a.invert(hit_plane(w, a.corner(), a.normal()).unwrap_or(V3::ZERO))
+                    Built::DiskArea(a, plane) => {
+                        a.invert(hit_plane(w, plane).unwrap_or(plane.point()))
+                    }
+                    Built::ParallelogramArea(a, plane) => {
+                        a.invert(hit_plane(w, plane).unwrap_or(plane.point()))
                     }
                 })
             }
@@ -438,43 +448,11 @@ mod instantiations {
     /// The f64 instantiation.
     #[allow(clippy::unnecessary_cast)]
     pub(super) mod f64 {
-        use lambert_sampling::f64::*;
-        type Real = f64;
-        type V2 = glam::DVec2;
-        type V3 = glam::DVec3;
-        fn narrow2(u: glam::DVec2) -> V2 {
-            u
-        }
-        fn narrow3(w: glam::DVec3) -> V3 {
-            w
-        }
-        fn wide2(u: V2) -> glam::DVec2 {
-            u
-        }
-        fn wide3(w: V3) -> glam::DVec3 {
-            w
-        }
-        catalog_impl!();
+        catalog_impl!(f64);
     }
     /// The f32 instantiation.
     pub(super) mod f32 {
-        use lambert_sampling::f32::*;
-        type Real = f32;
-        type V2 = glam::Vec2;
-        type V3 = glam::Vec3;
-        fn narrow2(u: glam::DVec2) -> V2 {
-            u.as_vec2()
-        }
-        fn narrow3(w: glam::DVec3) -> V3 {
-            w.as_vec3()
-        }
-        fn wide2(u: V2) -> glam::DVec2 {
-            u.as_dvec2()
-        }
-        fn wide3(w: V3) -> glam::DVec3 {
-            w.as_dvec3()
-        }
-        catalog_impl!();
+        catalog_impl!(f32);
     }
 }
 use instantiations::{f32, f64};

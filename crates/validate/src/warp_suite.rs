@@ -14,7 +14,7 @@
 
 use crate::catalog::{DirectionWarp, DirectionWarpSpec, Precision};
 use glam::DVec3;
-use lambert_sampling::{Independent, SampleSequence};
+use lambert_sampling::sequence::{Independent, SampleSequence};
 
 use crate::{Binning, ChiSquareOutcome, ChiSquareTest};
 
@@ -462,7 +462,7 @@ fn parallelogram_partition(
 
 /// Solid angle of the planar triangle (a, b, c) seen from the origin.
 fn solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
-    lambert_sampling::f64::spherical_triangle_solid_angle(DVec3::ZERO, a, b, c)
+    lambert_geometry::f64::triangle_solid_angle(DVec3::ZERO, a, b, c)
 }
 
 /// The exact partition of the warp's support, for the warps whose density

@@ -8,7 +8,8 @@
 //! and sample counts, and must be rejected.
 
 use glam::{DVec2, DVec3};
-use lambert_sampling::f64::{Frame, UniformCone};
+use lambert_geometry::f64::Frame;
+use lambert_sampling::f64::UniformCone;
 use lambert_validate::{sidak_level, Binning, ChiSquareOutcome, ChiSquareTest, ImmediateFailure};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg32;

@@ -6,7 +6,7 @@ use std::io::{self, BufWriter, Write};
 
 use clap::{Args, Subcommand, ValueEnum};
 use glam::DVec3;
-use lambert_sampling::{Independent, SampleSequence};
+use lambert_sampling::sequence::{Independent, SampleSequence};
 use lambert_validate::catalog::{DirectionWarpSpec, Precision};
 
 use crate::parse;

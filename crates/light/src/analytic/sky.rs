@@ -6,8 +6,8 @@ use glam::DVec3;
 use std::f64::consts::PI;
 
 /// A uniform sky of radiance L over the whole receiver hemisphere:
-/// E = ∫_{H²} L cos θ dω = Lπ, W/m² (closed form; the lecture's "uniform
-/// hemisphere" example).
+/// E = ∫_{H²} L cos θ dω = Lπ, W/m² (closed form,
+/// [`uniform_hemisphere_irradiance`](crate::radiometry::uniform_hemisphere_irradiance)).
 ///
 /// ```
 /// use lambert_light::analytic::sky_irradiance;
@@ -15,7 +15,7 @@ use std::f64::consts::PI;
 /// ```
 #[inline]
 pub fn sky_irradiance(radiance: f64) -> f64 {
-    radiance * PI
+    crate::radiometry::uniform_hemisphere_irradiance(radiance)
 }
 
 /// A uniform dome (the hemisphere of directions about `zenith`) of

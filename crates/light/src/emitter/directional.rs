@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use lambert_geometry::{f64::unit_vector, validate};
+
 use super::EmitterError;
 
 /// Parallel light from `direction` (unit, toward the light) giving
@@ -18,8 +20,8 @@ pub struct DirectionalLight {
 impl DirectionalLight {
     /// Validates the light; `direction` may have any non-zero length.
     pub fn new(direction: DVec3, irradiance: f64) -> Result<Self, EmitterError> {
-        let direction = EmitterError::unit("direction", direction)?;
-        EmitterError::check_non_negative("irradiance", irradiance)?;
+        let direction = unit_vector("direction", direction)?;
+        validate::non_negative("irradiance", irradiance)?;
         Ok(DirectionalLight {
             direction,
             irradiance,

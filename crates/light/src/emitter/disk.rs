@@ -1,19 +1,17 @@
 //! A disk light, one- or two-sided.
 
 use glam::DVec3;
+use lambert_geometry::f64::Disk;
+use lambert_geometry::validate;
 
 use super::EmitterError;
 
-/// A disk (center, unit normal, radius) of uniform radiance L. One-sided
-/// disks emit only to the side their normal points to.
+/// A disk of uniform radiance L. One-sided disks emit only to the side
+/// their normal points to.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DiskLight {
-    /// The center.
-    pub center: DVec3,
-    /// The unit normal (the emitting side of a one-sided disk).
-    pub normal: DVec3,
-    /// The radius, > 0.
-    pub radius: f64,
+    /// The disk (its normal is the emitting side of a one-sided disk).
+    pub disk: Disk,
     /// L, in W/m²/sr.
     pub radiance: f64,
     /// Whether both faces emit.
@@ -21,7 +19,8 @@ pub struct DiskLight {
 }
 
 impl DiskLight {
-    /// Validates the disk; `normal` may have any non-zero length.
+    /// Validates the disk (`normal` may have any non-zero length) and the
+    /// radiance.
     pub fn new(
         center: DVec3,
         normal: DVec3,
@@ -29,14 +28,10 @@ impl DiskLight {
         radiance: f64,
         two_sided: bool,
     ) -> Result<Self, EmitterError> {
-        EmitterError::check_vector("center", center)?;
-        let normal = EmitterError::unit("normal", normal)?;
-        EmitterError::check_positive("radius", radius)?;
-        EmitterError::check_non_negative("radiance", radiance)?;
+        let disk = Disk::new(center, normal, radius)?;
+        validate::non_negative("radiance", radiance)?;
         Ok(DiskLight {
-            center,
-            normal,
-            radius,
+            disk,
             radiance,
             two_sided,
         })

@@ -26,7 +26,7 @@ pub use sphere::SphereLight;
 use glam::DVec3;
 
 use crate::receiver::Receiver;
-use lambert_geometry::{ray_convex_polygon, ray_disk, ray_sphere};
+use lambert_geometry::f64::{Intersect, Ray};
 
 /// Any emitter of a scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -71,13 +71,13 @@ impl Emitter {
     /// this emitter: inside or on a sphere light.
     pub fn check_receiver(&self, receiver: &Receiver) -> Result<(), EmitterError> {
         if let Emitter::Sphere(s) = self {
-            let d = (receiver.point - s.center).length();
-            if !(d > s.radius) {
+            if s.sphere.contains(receiver.point) {
+                let d = (receiver.point - s.sphere.center()).length();
                 return Err(EmitterError::new(
                     "receiver.point",
                     format!(
                         "is inside or on the sphere light (distance to its center {d} <= radius {})",
-                        s.radius
+                        s.sphere.radius()
                     ),
                 ));
             }
@@ -90,6 +90,8 @@ impl Emitter {
     /// one-sided face); 0 for delta lights.
     #[inline]
     pub fn radiance_toward(&self, origin: DVec3, w: DVec3) -> f64 {
+        let ray = Ray::new(origin, w);
+        let seen = |shape: &dyn Intersect| shape.hit_distance(&ray, f64::INFINITY).is_some();
         match self {
             Emitter::Sky(s) => s.radiance,
             Emitter::SkyCap(c) => {
@@ -99,24 +101,16 @@ impl Emitter {
                     0.0
                 }
             }
-            Emitter::Sphere(s) => match ray_sphere(origin, w, s.center, s.radius) {
-                Some(_) => s.radiance,
-                None => 0.0,
-            },
-            Emitter::Disk(d) => {
-                let front = d.two_sided || w.dot(d.normal) < 0.0;
-                match ray_disk(origin, w, d.center, d.normal, d.radius) {
-                    Some(_) if front => d.radiance,
-                    _ => 0.0,
-                }
+            Emitter::Sphere(s) if seen(&s.sphere) => s.radiance,
+            Emitter::Disk(d) if (d.two_sided || w.dot(d.disk.normal()) < 0.0) && seen(&d.disk) => {
+                d.radiance
             }
-            Emitter::Polygon(p) => {
-                let front = p.two_sided || w.dot(p.polygon.normal) < 0.0;
-                match ray_convex_polygon(origin, w, &p.polygon) {
-                    Some(_) if front => p.radiance,
-                    _ => 0.0,
-                }
+            Emitter::Polygon(p)
+                if (p.two_sided || w.dot(p.polygon.normal()) < 0.0) && seen(&p.polygon) =>
+            {
+                p.radiance
             }
+            Emitter::Sphere(_) | Emitter::Disk(_) | Emitter::Polygon(_) => 0.0,
             Emitter::Point(_) | Emitter::Directional(_) => 0.0,
         }
     }
@@ -163,21 +157,27 @@ impl Emitter {
         match self {
             Emitter::Sky(s) => Some(sky_irradiance(s.radiance)),
             Emitter::SkyCap(c) => sky_cap_irradiance(c.radiance, n, c.axis, c.half_angle).ok(),
-            Emitter::Sphere(s) => sphere_irradiance(s.radiance, p, n, s.center, s.radius).ok(),
+            Emitter::Sphere(s) => {
+                sphere_irradiance(s.radiance, p, n, s.sphere.center(), s.sphere.radius()).ok()
+            }
             Emitter::Disk(d) => disk_irradiance(
                 d.radiance,
                 p,
                 n,
-                d.center,
-                d.normal,
-                d.radius,
+                d.disk.center(),
+                d.disk.normal(),
+                d.disk.radius(),
                 emission(d.two_sided),
             )
             .ok(),
-            Emitter::Polygon(q) => {
-                polygon_irradiance(q.radiance, p, n, &q.polygon.vertices, emission(q.two_sided))
-                    .ok()
-            }
+            Emitter::Polygon(q) => polygon_irradiance(
+                q.radiance,
+                p,
+                n,
+                q.polygon.vertices(),
+                emission(q.two_sided),
+            )
+            .ok(),
             Emitter::Point(_) | Emitter::Directional(_) => Some(self.delta_irradiance(receiver)),
         }
     }

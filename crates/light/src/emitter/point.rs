@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use lambert_geometry::validate;
+
 use super::EmitterError;
 
 /// An isotropic point light of intensity I (W/sr) at `position`: a delta
@@ -17,8 +19,8 @@ pub struct PointLight {
 impl PointLight {
     /// A point light of intensity I ≥ 0.
     pub fn with_intensity(position: DVec3, intensity: f64) -> Result<Self, EmitterError> {
-        EmitterError::check_vector("position", position)?;
-        EmitterError::check_non_negative("intensity", intensity)?;
+        validate::finite3("position", position)?;
+        validate::non_negative("intensity", intensity)?;
         Ok(PointLight {
             position,
             intensity,
@@ -27,7 +29,7 @@ impl PointLight {
 
     /// An isotropic point light of flux Φ ≥ 0: I = Φ/4π.
     pub fn with_flux(position: DVec3, flux: f64) -> Result<Self, EmitterError> {
-        EmitterError::check_non_negative("flux", flux)?;
-        Self::with_intensity(position, flux / (4.0 * std::f64::consts::PI))
+        validate::non_negative("flux", flux)?;
+        Self::with_intensity(position, crate::radiometry::isotropic_intensity(flux))
     }
 }

@@ -1,5 +1,7 @@
 //! A uniform sky: radiance L from every direction.
 
+use lambert_geometry::validate;
+
 use super::EmitterError;
 
 /// Radiance `radiance` (W/m²/sr) from every direction; a receiver sees
@@ -13,7 +15,7 @@ pub struct Sky {
 impl Sky {
     /// A sky of radiance L ≥ 0.
     pub fn new(radiance: f64) -> Result<Self, EmitterError> {
-        EmitterError::check_non_negative("radiance", radiance)?;
+        validate::non_negative("radiance", radiance)?;
         Ok(Sky { radiance })
     }
 }

@@ -1,7 +1,9 @@
 //! A sky cap: radiance L from the directions within a cone.
 
 use glam::DVec3;
-use lambert_sampling::f64::{Frame, UniformCone};
+use lambert_geometry::f64::{unit_vector, Frame};
+use lambert_geometry::validate;
+use lambert_sampling::f64::UniformCone;
 
 use super::EmitterError;
 
@@ -26,15 +28,15 @@ pub struct SkyCap {
 impl SkyCap {
     /// A cap about `axis` (any non-zero length) of half-angle γ ∈ (0, π].
     pub fn new(axis: DVec3, half_angle: f64, radiance: f64) -> Result<Self, EmitterError> {
-        let axis = EmitterError::unit("axis", axis)?;
-        EmitterError::check_finite("half_angle", half_angle)?;
+        let axis = unit_vector("axis", axis)?;
+        validate::finite("half_angle", half_angle)?;
         if !(half_angle > 0.0 && half_angle <= std::f64::consts::PI) {
             return Err(EmitterError::new(
                 "half_angle",
                 format!("must lie in (0, π] radians, got {half_angle}"),
             ));
         }
-        EmitterError::check_non_negative("radiance", radiance)?;
+        validate::non_negative("radiance", radiance)?;
         let cone = UniformCone::from_theta_max(half_angle)
             .map_err(|e| EmitterError::new("half_angle", e.to_string()))?;
         Ok(SkyCap {

@@ -1,30 +1,25 @@
 //! A spherical light: a uniform Lambertian sphere.
 
 use glam::DVec3;
+use lambert_geometry::f64::Sphere;
+use lambert_geometry::validate;
 
 use super::EmitterError;
 
-/// A sphere (center, radius) of uniform radiance L on its surface.
+/// A sphere of uniform radiance L on its surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SphereLight {
-    /// The center.
-    pub center: DVec3,
-    /// The radius, > 0.
-    pub radius: f64,
+    /// The sphere.
+    pub sphere: Sphere,
     /// L, in W/m²/sr.
     pub radiance: f64,
 }
 
 impl SphereLight {
-    /// Validates the sphere.
+    /// Validates the sphere (center, radius > 0) and the radiance (≥ 0).
     pub fn new(center: DVec3, radius: f64, radiance: f64) -> Result<Self, EmitterError> {
-        EmitterError::check_vector("center", center)?;
-        EmitterError::check_positive("radius", radius)?;
-        EmitterError::check_non_negative("radiance", radiance)?;
-        Ok(SphereLight {
-            center,
-            radius,
-            radiance,
-        })
+        let sphere = Sphere::new(center, radius)?;
+        validate::non_negative("radiance", radiance)?;
+        Ok(SphereLight { sphere, radiance })
     }
 }

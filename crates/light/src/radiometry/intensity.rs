@@ -1,38 +1,31 @@
-//! Radiant intensity I, in watts per steradian.
+//! Radiant intensity of isotropic point sources: I = Φ/4π.
 
-use super::RadiantFlux;
+use std::f64::consts::PI;
 
-/// Radiant intensity I = dΦ/dω, in W/sr (photometric: lm/sr = candela)
-/// (lecture; pbrt-v4 §4.1.1).
-#[derive(Clone, Copy, Debug, Default, PartialEq, PartialOrd)]
-pub struct RadiantIntensity(pub f64);
+/// The intensity I, in W/sr (photometric: candela), of an isotropic point
+/// source of total flux Φ (W; photometric: lumen): Φ = ∫_{S²} I dω = 4πI,
+/// so I = Φ/(4π) (pbrt-v4 §4.1.1). The point emitter's `with_flux` uses it.
+///
+/// ```
+/// use lambert_light::radiometry::isotropic_intensity;
+/// // An 815 lm LED bulb radiating evenly: ≈ 64.9 cd.
+/// let i = isotropic_intensity(815.0);
+/// assert!((i - 64.855_639_309_947_35).abs() < 1e-12);
+/// assert_eq!(i.round(), 65.0);
+/// ```
+#[inline]
+pub fn isotropic_intensity(flux_w: f64) -> f64 {
+    flux_w / (4.0 * PI)
+}
 
-impl RadiantIntensity {
-    /// The intensity, W/sr.
-    #[inline]
-    pub fn watts_per_sr(self) -> f64 {
-        self.0
-    }
-
-    /// An isotropic point source of total flux Φ: Φ = 4π I, so I = Φ/(4π).
-    ///
-    /// The lecture's modern LED bulb: 815 lm isotropic → 815/(4π) ≈ 64.9 cd
-    /// (the slide rounds to 65 cd).
-    ///
-    /// ```
-    /// use lambert_light::radiometry::{RadiantFlux, RadiantIntensity};
-    /// let i = RadiantIntensity::isotropic(RadiantFlux(815.0));
-    /// assert!((i.0 - 64.855_639_309_947_35).abs() < 1e-12);
-    /// assert_eq!(i.0.round(), 65.0);
-    /// ```
-    #[inline]
-    pub fn isotropic(flux: RadiantFlux) -> Self {
-        RadiantIntensity(flux.0 / (4.0 * std::f64::consts::PI))
-    }
-
-    /// The total flux of an isotropic source of this intensity, Φ = 4π I.
-    #[inline]
-    pub fn isotropic_flux(self) -> RadiantFlux {
-        RadiantFlux(4.0 * std::f64::consts::PI * self.0)
-    }
+/// The total flux Φ = 4πI, in W, of an isotropic point source of
+/// intensity I (W/sr).
+///
+/// ```
+/// use lambert_light::radiometry::{isotropic_flux, isotropic_intensity};
+/// assert!((isotropic_flux(isotropic_intensity(11.0)) - 11.0).abs() < 1e-14);
+/// ```
+#[inline]
+pub fn isotropic_flux(intensity_w_sr: f64) -> f64 {
+    4.0 * PI * intensity_w_sr
 }

@@ -1,51 +1,31 @@
-//! Radiance L, in W/(m²·sr); irradiance from uniform radiance.
+//! Irradiance from uniform radiance L, in W/(m²·sr): E = L Ω⊥, with Ω⊥ the
+//! projected solid angle ∫ cos θ dω of the directions it comes from.
 
-use super::Irradiance;
-
-/// Radiance L = d²Φ / (dA dω cos θ), in W/(m²·sr) (photometric: cd/m² =
-/// nit) (lecture; pbrt-v4 §4.1.1). Constant along rays in vacuum.
-#[derive(Clone, Copy, Debug, Default, PartialEq, PartialOrd)]
-pub struct Radiance(pub f64);
-
-impl Radiance {
-    /// The radiance, W/(m²·sr).
-    #[inline]
-    pub fn value(self) -> f64 {
-        self.0
-    }
-
-    /// Irradiance from this radiance over a set of directions of projected
-    /// solid angle Ω⊥ = ∫ cos θ dω: E = L Ω⊥ (lecture).
-    #[inline]
-    pub fn irradiance_from_projected_solid_angle(self, projected_sr: f64) -> Irradiance {
-        Irradiance(self.0 * projected_sr)
-    }
-}
+use std::f64::consts::PI;
 
 /// Irradiance under a uniform hemisphere of radiance L:
-/// E = ∫_{H²} L cos θ dω = L ∫₀^{2π}∫₀^{π/2} cos θ sin θ dθ dφ = Lπ, W/m²
-/// (lecture's worked example).
+/// E = ∫_{H²} L cos θ dω = L ∫₀^{2π}∫₀^{π/2} cos θ sin θ dθ dφ = Lπ, W/m².
+/// The sky's closed form is this.
 ///
 /// ```
-/// use lambert_light::radiometry::{uniform_hemisphere_irradiance, Radiance};
-/// assert_eq!(uniform_hemisphere_irradiance(Radiance(1.0)).0, std::f64::consts::PI);
+/// use lambert_light::radiometry::uniform_hemisphere_irradiance;
+/// assert_eq!(uniform_hemisphere_irradiance(1.0), std::f64::consts::PI);
 /// ```
 #[inline]
-pub fn uniform_hemisphere_irradiance(radiance: Radiance) -> Irradiance {
-    Irradiance(radiance.0 * std::f64::consts::PI)
+pub fn uniform_hemisphere_irradiance(radiance: f64) -> f64 {
+    radiance * PI
 }
 
 /// The projected solid angle of a disk seen on its axis under angular
-/// radius α, from sin²α: Ω⊥ = ∫₀^{2π}∫₀^α cos θ sin θ dθ dφ = π sin²α
-/// (lecture, "uniform disk light parallel to the plane"; sr). For a disk of
-/// radius R at height h, pass sin²α = R²/(R² + h²), which has no
-/// cancellation.
+/// radius α, from sin²α: Ω⊥ = ∫₀^{2π}∫₀^α cos θ sin θ dθ dφ = π sin²α, in
+/// sr. (Geometrically: the disk projects onto the unit disk as a circle of
+/// radius sin α.) For a disk of radius R at height h pass
+/// sin²α = R²/(R² + h²), which has no cancellation.
 ///
 /// ```
 /// use lambert_light::radiometry::disk_projected_solid_angle;
 /// use std::f64::consts::PI;
-/// // α = 30°: Ω⊥ = π/4 (the lecture's geometric derivation: the disk
-/// // projects to a circle of radius sin α on the unit disk).
+/// // α = 30°: Ω⊥ = π/4.
 /// let s = 30f64.to_radians().sin();
 /// assert!((disk_projected_solid_angle(s * s) - PI / 4.0).abs() < 1e-15);
 /// // α = 90° is the whole hemisphere, E = Lπ.
@@ -53,5 +33,5 @@ pub fn uniform_hemisphere_irradiance(radiance: Radiance) -> Irradiance {
 /// ```
 #[inline]
 pub fn disk_projected_solid_angle(sin2_alpha: f64) -> f64 {
-    std::f64::consts::PI * sin2_alpha
+    PI * sin2_alpha
 }

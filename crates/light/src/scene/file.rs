@@ -154,7 +154,7 @@ fn build(raw: &RawEmitter) -> Result<Emitter, EmitterError> {
             let half_angle = match (raw.half_angle, raw.half_angle_deg) {
                 (Some(r), None) => r,
                 (None, Some(d)) => {
-                    EmitterError::check_finite("half_angle_deg", d)?;
+                    lambert_geometry::validate::finite("half_angle_deg", d)?;
                     if !(d > 0.0 && d <= 180.0) {
                         return Err(EmitterError::new(
                             "half_angle_deg",

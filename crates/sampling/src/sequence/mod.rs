@@ -85,7 +85,7 @@ const TWO_POW_M53: f64 = 1.0 / 9_007_199_254_740_992.0;
 /// `2^-24`.
 const TWO_POW_M24_F32: f32 = 1.0 / 16_777_216.0;
 /// The largest f64 below 1.
-use crate::precision::f64::ONE_MINUS_EPSILON;
+use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
 
 /// `x · 2^-32`: exact, in `[0, 1 − 2^-32]`.
 #[inline]
@@ -110,7 +110,7 @@ pub(crate) fn u32_to_f32(x: u32) -> f32 {
 #[inline]
 pub(crate) fn f64_to_f32_unit(x: f64) -> f32 {
     let k = (x * 16_777_216.0) as u32; // saturating; x < 1 gives k < 2^24
-    (k as f32 * TWO_POW_M24_F32).min(crate::precision::f32::ONE_MINUS_EPSILON)
+    (k as f32 * TWO_POW_M24_F32).min(lambert_geometry::precision::f32::ONE_MINUS_EPSILON)
 }
 
 /// Clamps a computed value to `[0, 1)` (for sums that may round up to 1).

@@ -8,13 +8,26 @@
 //! orthonormal to rounding for every unit n (glam's `any_orthonormal_pair`
 //! implements the same construction; we call it).
 //!
-//! Convention (DESIGN.md): in the local frame +z is the normal, θ is measured
-//! from +z and φ from +x.
+//! Convention: in the local frame +z is the normal, θ is measured from +z
+//! and φ from +x.
 
 macro_rules! frame_impl {
-    () => {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::precision::$p::V3;
+
         /// A right-handed orthonormal frame (x, y, z) whose z is a given unit
-        /// normal (Duff et al. 2017).
+        /// normal (Duff et al. 2017, "Building an Orthonormal Basis,
+        /// Revisited", JCGT 6(1)).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Frame;")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        #[doc = concat!("let n = ", stringify!($v3), "::new(1.0, 2.0, -3.0).normalize();")]
+        /// let frame = Frame::from_normal(n);
+        /// // The normal is the local +z, and the frame is right-handed.
+        #[doc = concat!("assert!((frame.to_local(n) - ", stringify!($v3), "::Z).length() < 1e-6);")]
+        /// assert!((frame.x.cross(frame.y) - frame.z).length() < 1e-6);
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct Frame {
             /// First tangent.
@@ -55,7 +68,7 @@ macro_rules! frame_impl {
     };
 }
 
-crate::precision::both_precisions!(frame_impl);
+crate::both_precisions!(frame_impl);
 
 #[cfg(test)]
 mod tests {

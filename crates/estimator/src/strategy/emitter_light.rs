@@ -1,0 +1,118 @@
+//! Solid-angle sampling of one emitter from one receiver, built from the
+//! sampling crate's light samplers.
+
+use glam::{DVec2, DVec3};
+use lambert_geometry::f64::Frame;
+use lambert_light::emitter::Emitter;
+use lambert_light::receiver::Receiver;
+use lambert_sampling::f64::{
+    pdf_uniform_sphere, sample_uniform_sphere, DiskAreaSampler, LightSampler, PolygonLightSampler,
+    PolygonSolidAngle, SphereLightSampler, SphereSolidAngle, UniformCone,
+};
+
+/// A direction toward a light with its density per steradian.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightDirection {
+    /// Unit direction from the receiver.
+    pub direction: DVec3,
+    /// Density per steradian (> 0).
+    pub pdf: f64,
+}
+
+/// The best available solid-angle sampler of an emitter, prepared at one
+/// receiver for many samples: the subtended cone for spheres
+/// ([`SphereLightSampler`]; Shirley et al. 1996) and sky caps, the uniform
+/// sphere for a sky, the spherical rectangle (Ureña et al. 2013) or a fan of
+/// spherical triangles chosen by solid angle (Arvo 1995) for polygons
+/// ([`PolygonLightSampler`]), and area sampling converted to solid angle for
+/// disks ([`DiskAreaSampler`]; no solid-angle sampler of a disk yet).
+#[derive(Clone, Debug)]
+pub enum EmitterLight {
+    /// The whole sphere of directions, uniform.
+    Sky,
+    /// A sky cap's cone of directions, with its frame.
+    Cap(Frame, UniformCone),
+    /// A sphere's subtended cone.
+    Sphere(SphereSolidAngle),
+    /// A polygon's spherical rectangle or fan of spherical triangles.
+    Polygon(PolygonSolidAngle),
+    /// A disk, by area sampling at the receiver.
+    Disk(DiskAreaSampler, Receiver),
+    /// Nothing to sample (the emitter is invisible from here, or a delta
+    /// light).
+    None,
+}
+
+impl EmitterLight {
+    /// Prepares solid-angle sampling of `emitter` from `receiver`.
+    pub fn new(emitter: &Emitter, receiver: &Receiver) -> EmitterLight {
+        let p = receiver.point;
+        match emitter {
+            Emitter::Sky(_) => EmitterLight::Sky,
+            Emitter::SkyCap(c) => EmitterLight::Cap(c.frame, c.cone),
+            Emitter::Sphere(s) => match SphereLightSampler::new(s.sphere).at(p) {
+                Ok(sampler) => EmitterLight::Sphere(sampler),
+                Err(_) => EmitterLight::None,
+            },
+            Emitter::Disk(d) => EmitterLight::Disk(DiskAreaSampler::new(d.disk), *receiver),
+            Emitter::Polygon(poly) => match PolygonLightSampler::new(poly.polygon.clone()).at(p) {
+                PolygonSolidAngle::Fan { triangles, .. } if triangles.is_empty() => {
+                    EmitterLight::None
+                }
+                prepared => EmitterLight::Polygon(prepared),
+            },
+            Emitter::Point(_) | Emitter::Directional(_) => EmitterLight::None,
+        }
+    }
+
+    /// Whether every sample is known to see the emitter with its uniform
+    /// radiance (a sphere's or a sky cap's cone), so that the radiance
+    /// lookup can be skipped.
+    #[inline]
+    pub fn always_hits(&self) -> bool {
+        matches!(self, EmitterLight::Sphere(_) | EmitterLight::Cap(..))
+    }
+
+    /// A direction and its density per steradian, or `None` (nothing to
+    /// sample, or a sample of zero or non-finite density).
+    #[inline]
+    pub fn sample(&self, u: DVec2) -> Option<LightDirection> {
+        let (direction, pdf) = match self {
+            EmitterLight::Sky => {
+                let w = sample_uniform_sphere(u);
+                (w, pdf_uniform_sphere(w))
+            }
+            EmitterLight::Sphere(s) => {
+                let l = s.sample(u);
+                (l.direction, l.pdf)
+            }
+            EmitterLight::Cap(frame, cone) => {
+                (frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle())
+            }
+            EmitterLight::Polygon(p) => {
+                let l = p.sample(u)?;
+                (l.direction, l.pdf)
+            }
+            EmitterLight::Disk(a, r) => {
+                let l = a.sample(r.point, r.normal, u)?;
+                (l.direction, l.pdf)
+            }
+            EmitterLight::None => return None,
+        };
+        (pdf > 0.0 && pdf.is_finite()).then_some(LightDirection { direction, pdf })
+    }
+
+    /// The density per steradian with which [`EmitterLight::sample`]
+    /// produces the unit direction `w`.
+    #[inline]
+    pub fn pdf(&self, w: DVec3) -> f64 {
+        match self {
+            EmitterLight::Sky => pdf_uniform_sphere(w),
+            EmitterLight::Sphere(s) => s.pdf(w),
+            EmitterLight::Cap(frame, cone) => cone.pdf(frame.to_local(w)),
+            EmitterLight::Polygon(p) => p.pdf(w),
+            EmitterLight::Disk(a, r) => a.pdf(r.point, r.normal, w),
+            EmitterLight::None => 0.0,
+        }
+    }
+}

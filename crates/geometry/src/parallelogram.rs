@@ -1,0 +1,195 @@
+//! Parallelograms (rectangles among them).
+
+macro_rules! parallelogram_impl {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::plane::$p::{plane_distance, point_on_plane};
+        use crate::precision::$p::{wide3, Real, V2, V3};
+        use crate::ray::$p::{Hit, Intersect, Ray};
+        use crate::solid_angle::$p::triangle_solid_angle;
+        use crate::validate;
+        use crate::GeometryError;
+
+        /// The parallelogram corner + s·edge0 + t·edge1, (s, t) ∈ [0, 1]²;
+        /// its front face is the side of the normal edge0 × edge1.
+        ///
+        /// - area |edge0 × edge1|;
+        /// - solid angle from a point: its two triangles by Van Oosterom &
+        ///   Strackee (they have the same orientation from any viewpoint,
+        ///   so the sum does not cancel);
+        /// - intersection: the plane's, then (s, t) from the dual basis,
+        ///   s = ((p − c) × e₁)·N/|N|², t = (e₀ × (p − c))·N/|N|² with
+        ///   N = e₀ × e₁; the point is projected back onto the plane;
+        /// - surface parameters (s, t).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Parallelogram;")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        /// // A face of the cube [−1, 1]³ seen from its centre: 4π/6.
+        /// let face = Parallelogram::new(
+        #[doc = concat!("    ", stringify!($v3), "::new(-1.0, -1.0, 1.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(2.0, 0.0, 0.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(0.0, 2.0, 0.0),")]
+        /// )?;
+        #[doc = concat!("let o = face.solid_angle_from(", stringify!($v3), "::ZERO);")]
+        #[doc = concat!("assert!((o - 4.0 * ", "std::", stringify!($p), "::consts::PI / 6.0).abs() < 1e-6);")]
+        /// assert!(face.is_rectangle());
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct Parallelogram {
+            corner: V3,
+            edge0: V3,
+            edge1: V3,
+            normal: V3,
+            area: Real,
+            /// N/|N|², for the parameters (s, t) of a point.
+            dual: V3,
+        }
+
+        impl Parallelogram {
+            /// The parallelogram. Errors name the field: a non-finite
+            /// corner or edge, parallel or zero edges (`edges`), or an area
+            /// that overflows.
+            pub fn new(corner: V3, edge0: V3, edge1: V3) -> Result<Self, GeometryError> {
+                validate::finite3("corner", wide3(corner))?;
+                validate::finite3("edge0", wide3(edge0))?;
+                validate::finite3("edge1", wide3(edge1))?;
+                let n = edge0.cross(edge1);
+                let area = n.length();
+                if !area.is_finite() {
+                    return Err(GeometryError::Shape {
+                        field: "edges",
+                        problem: "are too large: the area overflows".into(),
+                    });
+                }
+                if !(area > 0.0) {
+                    return Err(GeometryError::Shape {
+                        field: "edges",
+                        problem: "span zero area (parallel or zero edges)".into(),
+                    });
+                }
+                Ok(Parallelogram {
+                    corner,
+                    edge0,
+                    edge1,
+                    normal: n / area,
+                    area,
+                    dual: n / (area * area),
+                })
+            }
+
+            /// The corner.
+            #[inline]
+            pub fn corner(&self) -> V3 {
+                self.corner
+            }
+
+            /// The first edge from the corner.
+            #[inline]
+            pub fn edge0(&self) -> V3 {
+                self.edge0
+            }
+
+            /// The second edge from the corner.
+            #[inline]
+            pub fn edge1(&self) -> V3 {
+                self.edge1
+            }
+
+            /// The unit normal edge0 × edge1 / |edge0 × edge1|.
+            #[inline]
+            pub fn normal(&self) -> V3 {
+                self.normal
+            }
+
+            /// The area |edge0 × edge1|, in m².
+            #[inline]
+            pub fn area(&self) -> Real {
+                self.area
+            }
+
+            /// The four corners, counter-clockwise seen from the front.
+            #[inline]
+            pub fn vertices(&self) -> [V3; 4] {
+                let c = self.corner;
+                [c, c + self.edge0, c + self.edge0 + self.edge1, c + self.edge1]
+            }
+
+            /// Whether the edges are perpendicular to 1e-9 of their lengths'
+            /// product (the spherical-rectangle sampler needs a rectangle).
+            #[inline]
+            pub fn is_rectangle(&self) -> bool {
+                self.edge0.dot(self.edge1).abs() as f64
+                    <= 1e-9 * (self.edge0.length() * self.edge1.length()) as f64
+            }
+
+            /// The solid angle, in steradians, that the parallelogram
+            /// subtends at `point`.
+            #[inline]
+            pub fn solid_angle_from(&self, point: V3) -> Real {
+                let [a, b, c, d] = self.vertices();
+                triangle_solid_angle(point, a, b, c) + triangle_solid_angle(point, a, c, d)
+            }
+
+            /// The parameters (s, t) of `point` (on the plane).
+            #[inline]
+            pub fn parameters(&self, point: V3) -> V2 {
+                let v = point - self.corner;
+                V2::new(
+                    v.cross(self.edge1).dot(self.dual),
+                    self.edge0.cross(v).dot(self.dual),
+                )
+            }
+        }
+
+        impl Intersect for Parallelogram {
+            #[inline]
+            fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real> {
+                let t = plane_distance(ray, self.corner, self.normal)?;
+                let st = self.parameters(ray.at(t));
+                (t < t_max && st.x >= 0.0 && st.x <= 1.0 && st.y >= 0.0 && st.y <= 1.0)
+                    .then_some(t)
+            }
+
+            #[inline]
+            fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
+                let t = self.hit_distance(ray, t_max)?;
+                let (point, error) = point_on_plane(ray, t, self.corner, self.normal);
+                Some(Hit {
+                    distance: t,
+                    point,
+                    normal: self.normal,
+                    error,
+                    uv: self.parameters(point).clamp(V2::ZERO, V2::ONE),
+                })
+            }
+        }
+    };
+}
+
+crate::both_precisions!(parallelogram_impl);
+
+#[cfg(test)]
+mod tests {
+    use crate::f64::{Intersect, Parallelogram, Ray};
+    use glam::DVec3;
+
+    #[test]
+    fn parameters_and_hits() {
+        let p = Parallelogram::new(
+            DVec3::new(0.0, 0.0, 2.0),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+        )
+        .unwrap();
+        assert!(!p.is_rectangle());
+        assert_eq!(p.area(), 2.0);
+        let uv = p.parameters(DVec3::new(1.5, 0.5, 2.0));
+        assert!((uv - glam::DVec2::new(0.5, 0.5)).length() < 1e-15);
+        let up = |x: f64, y: f64| Ray::new(DVec3::new(x, y, 0.0), DVec3::Z);
+        assert_eq!(p.hit_distance(&up(1.5, 0.5), f64::INFINITY), Some(2.0));
+        assert_eq!(p.hit_distance(&up(0.1, 0.5), f64::INFINITY), None);
+        let e = Parallelogram::new(DVec3::ZERO, DVec3::X, DVec3::X * 3.0).unwrap_err();
+        assert_eq!(e.field(), "edges");
+    }
+}

@@ -1,0 +1,205 @@
+//! Rays, hit records, and rays that leave a surface without hitting it
+//! again.
+//!
+//! A hit point computed in floating point lies off the true surface by a
+//! few roundings, on either side. A secondary ray started exactly there can
+//! hit the same surface again at a tiny distance ("acne"), and a ray started
+//! on the wrong side leaks through a surface it touches. Following pbrt-v4
+//! (Pharr, Jakob & Humphreys, *Physically Based Rendering*, 4th ed.,
+//! §6.8), every intersection reports a conservative bound on the absolute
+//! error of each component of its point, and [`Hit::spawn_ray`] moves the
+//! origin along the normal, to the side the new ray leaves toward, by the
+//! projection of that error box on the normal, then one ulp further away
+//! (so rounding of the addition cannot bring it back). The offset is the
+//! smallest that provably leaves the surface's error box, so there is no
+//! scene-scale "epsilon" to tune and contacts (a sphere resting on a plane)
+//! neither leak nor shadow themselves.
+//!
+//! Error bounds use γₙ = n·u/(1 − n·u), u = ε/2 the unit roundoff (Higham,
+//! *Accuracy and Stability of Numerical Algorithms*, §3.1): n roundings
+//! of a computation multiply its exact value by at most (1 ± γₙ).
+
+macro_rules! ray_impl {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::precision::$p::{Real, V2, V3};
+
+        /// γₙ = n·u/(1 − n·u), the relative error bound of n roundings
+        /// (u = ε/2).
+        #[inline]
+        pub fn gamma(n: u32) -> Real {
+            let nu = n as Real * (0.5 * Real::EPSILON);
+            nu / (1.0 - nu)
+        }
+
+        /// A ray: the points `origin + t·direction`, t > 0. Intersections
+        /// report `t`; with a unit `direction` that is the distance.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Ray;")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        #[doc = concat!("let ray = Ray::new(", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z);")]
+        #[doc = concat!("assert_eq!(ray.at(2.0), ", stringify!($v3), "::new(0.0, 0.0, 2.0));")]
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct Ray {
+            /// Where the ray starts.
+            pub origin: V3,
+            /// Its direction (unit, for `t` to be a distance).
+            pub direction: V3,
+        }
+
+        impl Ray {
+            /// The ray from `origin` along `direction`.
+            #[inline]
+            pub fn new(origin: V3, direction: V3) -> Self {
+                Ray { origin, direction }
+            }
+
+            /// The point at parameter `t`: origin + t·direction.
+            #[inline]
+            pub fn at(&self, t: Real) -> V3 {
+                self.origin + self.direction * t
+            }
+        }
+
+        /// Where a ray met a surface, and what shading and the next ray
+        /// need.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct Hit {
+            /// The ray parameter t > 0 of the hit (the distance along a unit
+            /// direction).
+            pub distance: Real,
+            /// The point, on the surface to within `error`.
+            pub point: V3,
+            /// The unit geometric normal: outward for a sphere, the shape's
+            /// own (right-hand-rule) normal for planar shapes, whichever side
+            /// the ray came from.
+            pub normal: V3,
+            /// A bound on the absolute error of each component of `point`.
+            pub error: V3,
+            /// Surface parameters, for textures: see each shape.
+            pub uv: V2,
+        }
+
+        impl Hit {
+            /// Whether a ray travelling along `direction` arrived on the
+            /// side the normal points to (the front face).
+            #[inline]
+            pub fn is_front(&self, direction: V3) -> bool {
+                direction.dot(self.normal) < 0.0
+            }
+
+            /// The normal turned to face against `direction` (toward where
+            /// a ray along `direction` came from).
+            #[inline]
+            pub fn facing_normal(&self, direction: V3) -> V3 {
+                if self.is_front(direction) {
+                    self.normal
+                } else {
+                    -self.normal
+                }
+            }
+
+            /// The origin of a ray leaving the surface toward `direction`:
+            /// [`offset_origin`] of the point past its error bound.
+            #[inline]
+            pub fn spawn_origin(&self, direction: V3) -> V3 {
+                offset_origin(self.point, self.error, self.normal, direction)
+            }
+
+            /// A ray leaving the surface along `direction` that cannot hit
+            /// the surface it leaves at its origin (see the module docs).
+            #[inline]
+            pub fn spawn_ray(&self, direction: V3) -> Ray {
+                Ray::new(self.spawn_origin(direction), direction)
+            }
+
+            /// A shadow ray from the surface toward `target` (a light's
+            /// point): a unit direction, and the distance at which to stop,
+            /// short of `target` by the relative margin [`SHADOW_EPSILON`]
+            /// so that the light's own surface does not count as an
+            /// occluder. `None` when `target` coincides with the origin.
+            #[inline]
+            pub fn spawn_ray_to(&self, target: V3) -> Option<(Ray, Real)> {
+                let origin = self.spawn_origin(target - self.point);
+                let to = target - origin;
+                let length = to.length();
+                (length > 0.0 && length.is_finite()).then(|| {
+                    (
+                        Ray::new(origin, to / length),
+                        length * (1.0 - SHADOW_EPSILON),
+                    )
+                })
+            }
+        }
+
+        /// The relative margin by which a shadow ray stops short of the
+        /// light point it aims at (pbrt-v4's `ShadowEpsilon`, 10⁻⁴ in both
+        /// precisions): larger than any rounding of the distance, far
+        /// smaller than any occluder's distance from the light that
+        /// matters.
+        pub const SHADOW_EPSILON: Real = 1e-4;
+
+        /// `point` moved along ±`normal`, to the side `direction` points to,
+        /// by d = |normal|·`error` (the error box's extent along the
+        /// normal), then rounded one ulp further from `point` per
+        /// component (pbrt-v4 §6.8.6, "Robust spawned ray origins").
+        #[inline]
+        pub fn offset_origin(point: V3, error: V3, normal: V3, direction: V3) -> V3 {
+            let d = normal.abs().dot(error);
+            let mut offset = normal * d;
+            if direction.dot(normal) < 0.0 {
+                offset = -offset;
+            }
+            let mut origin = point + offset;
+            for i in 0..3 {
+                if offset[i] > 0.0 {
+                    origin[i] = origin[i].next_up();
+                } else if offset[i] < 0.0 {
+                    origin[i] = origin[i].next_down();
+                }
+            }
+            origin
+        }
+
+        /// Ray intersection, implemented by every shape.
+        pub trait Intersect {
+            /// The nearest hit with 0 < t < `t_max`, with its point, normal,
+            /// error bound and surface parameters.
+            fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit>;
+
+            /// The parameter t of the nearest hit with 0 < t < `t_max`
+            /// only: the same decision as [`Intersect::intersect`], without
+            /// building the hit record (shadow rays, radiance lookups).
+            fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real>;
+        }
+    };
+}
+
+crate::both_precisions!(ray_impl);
+
+#[cfg(test)]
+mod tests {
+    use super::f64::{gamma, offset_origin};
+    use glam::DVec3;
+
+    #[test]
+    fn gamma_bounds_n_roundings() {
+        assert_eq!(gamma(0), 0.0);
+        assert!(gamma(1) > f64::EPSILON / 2.0 && gamma(1) < f64::EPSILON / 2.0 * 1.001);
+        assert!(gamma(5) > 5.0 * f64::EPSILON / 2.0);
+    }
+
+    #[test]
+    fn offsets_leave_the_error_box_on_the_side_of_the_direction() {
+        let p = DVec3::new(1.0, 2.0, 0.0);
+        let err = DVec3::splat(1e-12);
+        let up = offset_origin(p, err, DVec3::Z, DVec3::new(0.3, 0.0, 1.0));
+        assert!(up.z > 1e-12, "{up}");
+        let down = offset_origin(p, err, DVec3::Z, DVec3::new(0.3, 0.0, -1.0));
+        assert!(down.z < -1e-12, "{down}");
+        // An exact point needs no offset.
+        let exact = offset_origin(p, DVec3::ZERO, DVec3::Z, DVec3::Z);
+        assert_eq!(exact, p);
+    }
+}

@@ -1,0 +1,264 @@
+//! Area sampling of lights: uniform points on the light's surface, their
+//! density converted to solid angle (p_ω = p_A d²/|cos θ_l|, pbrt-v4
+//! §4.2.3). Simple and unbiased, but the conversion makes the estimator's
+//! variance grow without bound as the shading point approaches the light
+//! (d → 0) or sees it edge-on; prefer the solid-angle samplers where they
+//! exist.
+
+macro_rules! area_light_impl {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::area::$p::UniformDiskArea;
+        use crate::discrete::$p::pick_by_cumulative;
+        use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
+        use crate::light_sampler::$p::{all_below, seen_from, LightSampler};
+        use crate::sphere::$p::sample_uniform_sphere;
+        use crate::triangle::$p::UniformTriangle;
+        use lambert_geometry::precision::$p::{Real, V2, V3};
+        use lambert_geometry::$p::{ConvexPolygon, Disk, Intersect, Ray, Sphere, Triangle};
+
+        /// The light sample through the first point of `shape` that the
+        /// ray from `reference` along `direction` meets, with `pdf_area`
+        /// per m² at that point (normal from `normal_at`); 0 if none.
+        #[inline]
+        fn pdf_through<S: Intersect>(
+            shape: &S,
+            reference: V3,
+            direction: V3,
+            pdf_area: Real,
+            normal_at: impl Fn(V3) -> V3,
+        ) -> Real {
+            match shape.hit_distance(&Ray::new(reference, direction), Real::INFINITY) {
+                Some(t) => {
+                    let point = reference + direction * t;
+                    pdf_area_to_solid_angle(pdf_area, reference, point, normal_at(point))
+                }
+                None => 0.0,
+            }
+        }
+
+        /// Uniform points on a sphere's whole surface (density 1/(4πr²)
+        /// per m²); a point on the far side, hidden by the sphere itself,
+        /// gives no sample.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{LightSampler, SphereAreaSampler};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let light = SphereAreaSampler::new(Sphere::new(", stringify!($v3), "::new(0.0, 0.0, 4.0), 1.0)?);")]
+        #[doc = concat!("let (p, n) = (", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z);")]
+        /// // u₀ = 1 is the sphere's lowest point, which faces p.
+        #[doc = concat!("let s = light.sample(p, n, ", stringify!($v2), "::new(1.0, 0.0)).unwrap();")]
+        /// assert!((s.distance - 3.0).abs() < 1e-5);
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct SphereAreaSampler {
+            sphere: Sphere,
+        }
+
+        impl SphereAreaSampler {
+            /// The sampler of `sphere`.
+            #[inline]
+            pub fn new(sphere: Sphere) -> Self {
+                SphereAreaSampler { sphere }
+            }
+        }
+
+        impl LightSampler for SphereAreaSampler {
+            #[inline]
+            fn sample(&self, reference: V3, _normal: V3, u: V2) -> Option<LightSample> {
+                let (c, r) = (self.sphere.center(), self.sphere.radius());
+                let n = sample_uniform_sphere(u);
+                let point = c + n * r;
+                // Hidden unless the surface faces the reference point.
+                if n.dot(reference - point) <= 0.0 {
+                    return None;
+                }
+                seen_from(
+                    reference,
+                    PointSample {
+                        point,
+                        normal: n,
+                        pdf_area: 1.0 / self.sphere.area(),
+                    },
+                )
+            }
+
+            #[inline]
+            fn pdf(&self, reference: V3, _normal: V3, direction: V3) -> Real {
+                let (c, r) = (self.sphere.center(), self.sphere.radius());
+                pdf_through(&self.sphere, reference, direction, 1.0 / self.sphere.area(), |p| {
+                    (p - c) / r
+                })
+            }
+        }
+
+        /// Uniform points on a disk (density 1/(πR²) per m², the
+        /// concentric map).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Disk;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{DiskAreaSampler, LightSampler};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let light = DiskAreaSampler::new(Disk::new(", stringify!($v3), "::Z, -", stringify!($v3), "::Z, 1.0)?);")]
+        #[doc = concat!("let (p, n) = (", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z);")]
+        /// // The disk's centre, straight up: p_ω = p_A d²/cos θ = 1/π.
+        #[doc = concat!("let s = light.sample(p, n, ", stringify!($v2), "::new(0.5, 0.5)).unwrap();")]
+        #[doc = concat!("assert!((s.pdf - 1.0 / std::", stringify!($p), "::consts::PI).abs() < 1e-6);")]
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct DiskAreaSampler {
+            disk: Disk,
+            area: UniformDiskArea,
+        }
+
+        impl DiskAreaSampler {
+            /// The sampler of `disk`.
+            #[inline]
+            pub fn new(disk: Disk) -> Self {
+                DiskAreaSampler {
+                    area: UniformDiskArea::new(&disk),
+                    disk,
+                }
+            }
+        }
+
+        impl LightSampler for DiskAreaSampler {
+            #[inline]
+            fn sample(&self, reference: V3, _normal: V3, u: V2) -> Option<LightSample> {
+                seen_from(reference, self.area.sample(u))
+            }
+
+            #[inline]
+            fn pdf(&self, reference: V3, _normal: V3, direction: V3) -> Real {
+                let n = self.disk.normal();
+                pdf_through(&self.disk, reference, direction, 1.0 / self.area.area(), |_| n)
+            }
+        }
+
+        /// Uniform points on a triangle (density 1/A per m²).
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct TriangleAreaSampler {
+            triangle: Triangle,
+            area: UniformTriangle,
+        }
+
+        impl TriangleAreaSampler {
+            /// The sampler of `triangle`.
+            #[inline]
+            pub fn new(triangle: Triangle) -> Self {
+                TriangleAreaSampler {
+                    area: UniformTriangle::new(&triangle),
+                    triangle,
+                }
+            }
+        }
+
+        impl LightSampler for TriangleAreaSampler {
+            #[inline]
+            fn sample(&self, reference: V3, normal: V3, u: V2) -> Option<LightSample> {
+                if all_below(reference, normal, &self.triangle.vertices()) {
+                    return None;
+                }
+                seen_from(reference, self.area.sample(u))
+            }
+
+            #[inline]
+            fn pdf(&self, reference: V3, normal: V3, direction: V3) -> Real {
+                if all_below(reference, normal, &self.triangle.vertices()) {
+                    return 0.0;
+                }
+                let n = self.triangle.normal();
+                pdf_through(&self.triangle, reference, direction, 1.0 / self.triangle.area(), |_| n)
+            }
+        }
+
+        /// Uniform points on a convex polygon: a fan triangle (v₀, vᵢ,
+        /// vᵢ₊₁) chosen in proportion to its area, then a uniform point in
+        /// it (density 1/A per m²). The fan is built once, with the light.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::ConvexPolygon;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{LightSampler, PolygonAreaSampler};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        /// let square = ConvexPolygon::new(vec![
+        #[doc = concat!("    ", stringify!($v3), "::new(-1.0, -1.0, 1.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(-1.0, 1.0, 1.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(1.0, 1.0, 1.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(1.0, -1.0, 1.0),")]
+        /// ])?;
+        /// let light = PolygonAreaSampler::new(square);
+        /// assert_eq!(light.area(), 4.0);
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct PolygonAreaSampler {
+            polygon: ConvexPolygon,
+            triangles: Vec<UniformTriangle>,
+            cumulative: Vec<Real>,
+        }
+
+        impl PolygonAreaSampler {
+            /// The sampler of `polygon` (fan triangles of zero area, which a
+            /// valid convex polygon does not have, would be skipped).
+            pub fn new(polygon: ConvexPolygon) -> Self {
+                let v = polygon.vertices();
+                let mut triangles = Vec::new();
+                let mut cumulative = Vec::new();
+                let mut total = 0.0;
+                for i in 1..v.len() - 1 {
+                    if let Ok(t) = Triangle::new(v[0], v[i], v[i + 1]) {
+                        total += t.area();
+                        triangles.push(UniformTriangle::new(&t));
+                        cumulative.push(total);
+                    }
+                }
+                PolygonAreaSampler {
+                    polygon,
+                    triangles,
+                    cumulative,
+                }
+            }
+
+            /// The sampled area (the sum of the fan's triangles), in m².
+            #[inline]
+            pub fn area(&self) -> Real {
+                self.cumulative.last().copied().unwrap_or(0.0)
+            }
+        }
+
+        impl LightSampler for PolygonAreaSampler {
+            #[inline]
+            fn sample(&self, reference: V3, normal: V3, u: V2) -> Option<LightSample> {
+                if all_below(reference, normal, self.polygon.vertices()) {
+                    return None;
+                }
+                let total = *self.cumulative.last()?;
+                let (k, u0) = pick_by_cumulative(&self.cumulative, u.x)?;
+                let s = self.triangles[k].sample(V2::new(u0, u.y));
+                seen_from(
+                    reference,
+                    PointSample {
+                        pdf_area: 1.0 / total,
+                        ..s
+                    },
+                )
+            }
+
+            #[inline]
+            fn pdf(&self, reference: V3, normal: V3, direction: V3) -> Real {
+                if all_below(reference, normal, self.polygon.vertices()) {
+                    return 0.0;
+                }
+                let Some(&total) = self.cumulative.last() else {
+                    return 0.0;
+                };
+                let n = self.polygon.normal();
+                pdf_through(&self.polygon, reference, direction, 1.0 / total, |_| n)
+            }
+        }
+    };
+}
+
+lambert_geometry::both_precisions!(area_light_impl);

@@ -1,0 +1,42 @@
+//! Choosing one piece of a light (a fan triangle) in proportion to its
+//! weight (solid angle or area), reusing the sample.
+
+macro_rules! discrete_impl {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use lambert_geometry::precision::$p::{Real, ONE_MINUS_EPSILON};
+
+        /// Picks index k with probability wₖ/W from the cumulative weights
+        /// `cumulative` (increasing, last = W) using u ∈ [0, 1), and returns k with
+        /// u rescaled to [0, 1) within k's interval, so one uniform number both
+        /// chooses the piece and samples inside it (pbrt-v4 §A.1, "sample reuse").
+        /// `None` when there are no pieces.
+        #[inline]
+        pub fn pick_by_cumulative(cumulative: &[Real], u: Real) -> Option<(usize, Real)> {
+            let total = *cumulative.last()?;
+            let target = u * total;
+            let k = cumulative
+                .partition_point(|&c| c <= target)
+                .min(cumulative.len() - 1);
+            let lo = if k == 0 { 0.0 } else { cumulative[k - 1] };
+            let rescaled = ((target - lo) / (cumulative[k] - lo)).clamp(0.0, ONE_MINUS_EPSILON);
+            Some((k, rescaled))
+        }
+    };
+}
+
+lambert_geometry::both_precisions!(discrete_impl);
+
+#[cfg(test)]
+mod tests {
+    use super::f64::pick_by_cumulative;
+
+    #[test]
+    fn picks_in_proportion_and_rescales() {
+        let c = [1.0, 3.0, 4.0];
+        assert_eq!(pick_by_cumulative(&c, 0.0), Some((0, 0.0)));
+        assert_eq!(pick_by_cumulative(&c, 0.125), Some((0, 0.5)));
+        assert_eq!(pick_by_cumulative(&c, 0.5), Some((1, 0.5)));
+        assert_eq!(pick_by_cumulative(&c, 0.875), Some((2, 0.5)));
+        assert!(pick_by_cumulative(&[], 0.5).is_none());
+    }
+}

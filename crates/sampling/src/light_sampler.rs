@@ -1,0 +1,82 @@
+//! The light-sampling interface a path tracer calls at every shading point.
+//!
+//! A light sampler is built once per light, from the light's shape, and is
+//! then asked, at any shading point (a reference point and the unit normal
+//! there), for a direction toward the light: the [`LightSample`]'s unit
+//! direction, the point it reaches on the light, the distance to that point
+//! (for the shadow ray) and the density of the direction per steradian.
+//! [`LightSampler::pdf`] gives the same density for a direction found by
+//! another technique (BSDF sampling), as multiple importance sampling needs
+//! (Veach & Guibas 1995). Neither call allocates.
+//!
+//! Samplers that draw points by area convert the density to solid angle,
+//! p_ω = p_A d²/|cos θ_l| (pbrt-v4 §4.2.3).
+
+macro_rules! light_sampler_impl {
+    ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
+        use lambert_geometry::precision::$p::{Real, V2, V3};
+
+        /// A light sampler: built once per light, sampled at any shading
+        /// point (see the [module docs](self)).
+        ///
+        /// Both methods take the shading point's unit `normal`: a sampler
+        /// returns `None` (and density 0) when the light lies wholly below
+        /// that point's horizon, where it cannot contribute, and is free to
+        /// use the normal to sample better. Samples may still lie below the
+        /// horizon when the light straddles it; they carry cos θ ≤ 0 and
+        /// contribute nothing.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{LightSampler, SphereLightSampler};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let light = SphereLightSampler::new(Sphere::new(", stringify!($v3), "::new(0.0, 0.0, 10.0), 1.0)?);")]
+        #[doc = concat!("let (p, n) = (", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z);")]
+        #[doc = concat!("let s = light.sample(p, n, ", stringify!($v2), "::new(0.5, 0.5)).unwrap();")]
+        /// // The shadow ray runs from p along s.direction for s.distance.
+        /// assert!((p + s.direction * s.distance - s.point).length() < 1e-4);
+        /// assert_eq!(light.pdf(p, n, s.direction), s.pdf);
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
+        pub trait LightSampler {
+            /// A direction from `reference` toward the light, with the point
+            /// it reaches, the distance, and its density per steradian;
+            /// `None` when the light cannot be sampled from there (wholly
+            /// below the horizon, the point inside or on the light, or the
+            /// light seen edge-on).
+            fn sample(&self, reference: V3, normal: V3, u: V2) -> Option<LightSample>;
+
+            /// The density per steradian with which [`LightSampler::sample`]
+            /// at (`reference`, `normal`) produces the unit `direction`
+            /// (0 where it never does).
+            fn pdf(&self, reference: V3, normal: V3, direction: V3) -> Real;
+        }
+
+        /// The light sample of an area sample `s` seen from `reference`:
+        /// the direction and distance to the point and the density
+        /// converted to solid angle; `None` when the point subtends no
+        /// solid angle (seen edge-on, or at the reference point).
+        #[inline]
+        pub fn seen_from(reference: V3, s: PointSample) -> Option<LightSample> {
+            let to = s.point - reference;
+            let distance = to.length();
+            let pdf = pdf_area_to_solid_angle(s.pdf_area, reference, s.point, s.normal);
+            (pdf > 0.0 && distance > 0.0).then(|| LightSample {
+                direction: to / distance,
+                pdf,
+                point: s.point,
+                distance,
+            })
+        }
+
+        /// Whether every one of `points` lies on or below the horizon of
+        /// (`reference`, `normal`): n·(pᵢ − reference) ≤ 0.
+        #[inline]
+        pub(crate) fn all_below(reference: V3, normal: V3, points: &[V3]) -> bool {
+            points.iter().all(|&p| normal.dot(p - reference) <= 0.0)
+        }
+    };
+}
+
+lambert_geometry::both_precisions!(light_sampler_impl);
