@@ -42,6 +42,10 @@ pub(crate) mod quadrature;
 pub mod sky;
 pub mod sphere;
 #[cfg(test)]
+mod accuracy;
+#[cfg(test)]
+pub(crate) mod oracle;
+#[cfg(test)]
 pub(crate) mod test_support;
 #[cfg(test)]
 mod tests;
