@@ -193,7 +193,9 @@ pub(crate) fn straddling_disks() -> Vec<Case> {
                     let facing = if m.dot(p - c) > 0.0 { m } else { -m };
                     out.push(Case {
                         key: format!("D={d:e} frac={frac:e}"),
-                        label: format!("straddling disk D={d:e} frac={frac:e} tilt {tilt} rot {ri}"),
+                        label: format!(
+                            "straddling disk D={d:e} frac={frac:e} tilt {tilt} rot {ri}"
+                        ),
                         value: disk_irradiance(1.0, p, n, c, facing, r, Emission::OneSided),
                         exact: oracle::disk(1.0, p, n, c, facing, r, false),
                     });
@@ -260,7 +262,15 @@ pub(crate) fn extreme_magnitudes() -> Vec<Case> {
             1e-300,
             Emission::OneSided,
         ),
-        exact: oracle::disk(1e300, DVec3::ZERO, DVec3::Z, DVec3::Z, -DVec3::Z, 1e-300, false),
+        exact: oracle::disk(
+            1e300,
+            DVec3::ZERO,
+            DVec3::Z,
+            DVec3::Z,
+            -DVec3::Z,
+            1e-300,
+            false,
+        ),
     });
     out
 }
@@ -270,7 +280,10 @@ fn worst(cases: &[Case]) -> (f64, String) {
     for c in cases {
         let e = c.rel();
         if !(e <= w.0) {
-            w = (e, format!("{} → {:?} vs {:.17e}", c.label, c.value, c.exact.to_f64()));
+            w = (
+                e,
+                format!("{} → {:?} vs {:.17e}", c.label, c.value, c.exact.to_f64()),
+            );
         }
     }
     w
@@ -296,7 +309,10 @@ fn report_worst_errors() {
         }
         for k in keys {
             let sub: Vec<&Case> = cases.iter().filter(|c| &c.key == k).collect();
-            let w = sub.iter().map(|c| c.rel()).fold(0.0f64, |a, b| if b > a || b.is_nan() { b } else { a });
+            let w =
+                sub.iter()
+                    .map(|c| c.rel())
+                    .fold(0.0f64, |a, b| if b > a || b.is_nan() { b } else { a });
             println!("    {k:>28}: worst {w:.2e}");
         }
     }
@@ -314,12 +330,23 @@ fn oracle_matches_area_integrals() {
         let n = DVec3::new(beta.sin(), 0.0, beta.cos());
         let reference = disk_area_form(DVec3::ZERO, n, c, m, 0.8);
         let o = oracle::disk(1.0, DVec3::ZERO, n, c, m, 0.8, true).to_f64();
-        assert!((o / reference - 1.0).abs() < 1e-12, "disk {tilt} {beta}: {o} vs {reference}");
+        assert!(
+            (o / reference - 1.0).abs() < 1e-12,
+            "disk {tilt} {beta}: {o} vs {reference}"
+        );
     }
     for &(h, s, r) in &[(0.5, 0.7, 1.0), (2.0, 3.0, 1.0)] {
         let a = oracle::disk_parallel(1.0, h, s, r).to_f64();
-        let b = oracle::disk(1.0, DVec3::ZERO, DVec3::Z, DVec3::new(s, 0.0, h), -DVec3::Z, r, false)
-            .to_f64();
+        let b = oracle::disk(
+            1.0,
+            DVec3::ZERO,
+            DVec3::Z,
+            DVec3::new(s, 0.0, h),
+            -DVec3::Z,
+            r,
+            false,
+        )
+        .to_f64();
         assert!((a / b - 1.0).abs() < 1e-15, "{a} vs {b}");
     }
     for &gamma in &[0.05, 1.0, 2.0] {
@@ -327,7 +354,10 @@ fn oracle_matches_area_integrals() {
             let a = DVec3::new(f64::sin(beta), 0.0, f64::cos(beta));
             let reference = cap_hemisphere_form(DVec3::Z, a, gamma);
             let o = oracle::sky_cap(1.0, DVec3::Z, a, gamma).to_f64();
-            assert!((o - reference).abs() <= 1e-12 * reference.max(1e-300), "cap {gamma} {beta}");
+            assert!(
+                (o - reference).abs() <= 1e-12 * reference.max(1e-300),
+                "cap {gamma} {beta}"
+            );
         }
     }
 }

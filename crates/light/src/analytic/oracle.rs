@@ -112,7 +112,7 @@ impl B {
         }
         let (words, _, sign, exp, _) = self.0.as_raw_parts().expect("finite");
         let top = *words.last().expect("mantissa") as f64; // in [2^63, 2^64)
-        // value = top/2^64 · 2^exp
+                                                           // value = top/2^64 · 2^exp
         let mut v = top / 18_446_744_073_709_551_616.0;
         let mut e = exp as i64;
         while e > 0 {
