@@ -237,9 +237,10 @@ pub(crate) fn extreme_magnitudes() -> Vec<Case> {
                 value: disk_irradiance(l, p, n, c, m, 0.7 * s, Emission::OneSided),
                 exact: oracle::disk(l, p, n, c, m, 0.7 * s, false),
             });
-            let verts = polygon_around(c, -m, 0, 0.2);
-            let verts: Vec<DVec3> = verts.iter().map(|&v| v * 1.0).collect();
-            let verts_s: Vec<DVec3> = verts.iter().map(|&v| (v - c) * s + c).collect();
+            let verts_s: Vec<DVec3> = polygon_around(DVec3::ZERO, -m, 0, 0.2)
+                .iter()
+                .map(|&v| v * s + c)
+                .collect();
             out.push(Case {
                 key: format!("s={s:e}"),
                 label: format!("polygon s={s:e} L={l:e}"),

@@ -60,7 +60,7 @@ pub use disk::{
 pub use error::AnalyticError;
 pub use point::{directional_light_irradiance, point_light_irradiance};
 pub use polygon::{clip_polygon_to_hemisphere, polygon_irradiance};
-pub use sky::{dome_irradiance, sky_cap_irradiance, sky_irradiance};
+pub use sky::{dome_irradiance, sky_cap_irradiance, sky_irradiance, try_sky_irradiance};
 pub use sphere::sphere_irradiance;
 
 /// Which faces of a planar emitter (disk, polygon) emit.

@@ -19,6 +19,7 @@
 //! their size (≈ 1e-10 relative at D/ℓ = 1e6; measured in the tests).
 
 use super::error::{finite, finite3, unit, AnalyticError};
+use super::scaled;
 use super::Emission;
 use glam::DVec3;
 
@@ -155,11 +156,26 @@ pub fn polygon_irradiance(
     finite("radiance", radiance)?;
     let p = finite3("p", p)?;
     let n = unit("normal", normal)?;
-    let front = polygon_normal(vertices)?;
-    let side = front.dot(p - vertices[0]);
+    for &v in vertices {
+        finite3("vertices", v)?;
+    }
+    // Exact power-of-two rescaling so that no product of two lengths
+    // overflows or underflows (vertices 1e300 or 1e-300 in size).
+    let k = super::disk::power_of_two_above(
+        vertices
+            .iter()
+            .fold(p.abs().max_element(), |a, v| a.max(v.abs().max_element())),
+    );
+    let scaled_vertices: Vec<DVec3> = vertices.iter().map(|&v| v / k).collect();
+    let p = p / k;
+    let front = polygon_normal(&scaled_vertices)?;
+    let side = front.dot(p - scaled_vertices[0]);
     if side == 0.0 || (emission == Emission::OneSided && side < 0.0) {
         return Ok(0.0);
     }
-    let clipped = clip_polygon_to_hemisphere(p, n, vertices);
-    Ok(radiance * lambert_projected_solid_angle(p, n, &clipped))
+    let clipped = clip_polygon_to_hemisphere(p, n, &scaled_vertices);
+    scaled::product(
+        "irradiance",
+        &[radiance, lambert_projected_solid_angle(p, n, &clipped)],
+    )
 }
