@@ -38,6 +38,7 @@ mod accuracy;
 pub mod cap;
 pub mod disk;
 pub mod error;
+mod lambert;
 #[cfg(test)]
 pub(crate) mod oracle;
 pub mod point;
