@@ -205,8 +205,9 @@ pub fn disk_irradiance_with_error_bound(
     })
 }
 
-/// The smallest power of two ≥ x (x > 0 finite), or x itself if x is
-/// subnormal... 1 for x = 0.
+/// The smallest power of two ≥ x for finite x > 0 (clamped to the normal
+/// range, 2⁻¹⁰²² … 2¹⁰²³), 1 for x = 0: dividing by it is exact and
+/// brings the largest coordinate into [1/2, 1].
 pub(crate) fn power_of_two_above(x: f64) -> f64 {
     if !(x > 0.0) {
         return 1.0;

@@ -101,6 +101,7 @@ pub(crate) fn integrate_bounded<F: Fn(f64) -> f64>(
     }
 }
 
+#[cfg(test)]
 /// [`integrate_bounded`]'s value with the default budget.
 pub(crate) fn integrate<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) -> f64 {
     integrate_bounded(f, a, b, rel_tol, MAX_PANELS).value
