@@ -71,9 +71,25 @@ macro_rules! sphere_impl {
 
             /// Whether `point` is inside or on the sphere (|point − c| ≤ r):
             /// there the sphere covers at least a hemisphere of directions.
+            /// The distance is taken without overflow (a sphere of radius
+            /// 1e308 centred 1e308 away contains the origin).
             #[inline]
             pub fn contains(&self, point: V3) -> bool {
-                !((point - self.center).length() > self.radius)
+                !(self.distance_to_center(point) > self.radius)
+            }
+
+            /// |point − c|, scaled by its largest component first so that it
+            /// neither overflows nor underflows where the result is a
+            /// normal number (∞ only when point − c itself overflows).
+            #[inline]
+            pub fn distance_to_center(&self, point: V3) -> Real {
+                let v = point - self.center;
+                let largest = v.abs().max_element();
+                if largest > 0.0 && largest.is_finite() {
+                    largest * (v / largest).length()
+                } else {
+                    largest
+                }
             }
 
             /// The solid angle, in steradians, that the sphere subtends at

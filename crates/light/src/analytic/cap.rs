@@ -103,3 +103,23 @@ fn small_cap(cb: f64, sg: f64, cg: f64) -> f64 {
     let tau = w.atan2(-cg * cb);
     (segment(phi0) + sg * sg * cb * segment(tau)).max(0.0)
 }
+
+/// (P/sin²γ, sin γ) for γ ≤ π/2 (P ≤ π sin²γ, so the quotient is at most
+/// π and does not underflow for tiny caps), (P, 1) for γ > π/2: the
+/// caller forms L·q·s·s without intermediate underflow.
+pub(crate) fn cap_over_sin2(cb: f64, sg: f64, cg: f64) -> (f64, f64) {
+    if cg < 0.0 || !(sg > 0.0) {
+        return (cap_projected_solid_angle(cb, sg, cg), 1.0);
+    }
+    if cb >= sg {
+        return (PI * cb, sg);
+    }
+    if cb <= -sg {
+        return (0.0, sg);
+    }
+    // Straddling: P/sg² = S(φ₀)/sg² + cos β S(τ).
+    let w = ((sg - cb.abs()) * (sg + cb.abs())).sqrt();
+    let phi0 = w.atan2(cg);
+    let tau = w.atan2(-cg * cb);
+    ((segment(phi0) / sg / sg + cb * segment(tau)).max(0.0), sg)
+}

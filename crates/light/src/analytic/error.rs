@@ -35,6 +35,23 @@ pub enum AnalyticError {
         /// What is wrong with it.
         reason: &'static str,
     },
+    /// The true value of a quantity (the irradiance, or an intermediate
+    /// that cannot be scaled away) exceeds the largest f64, 1.8e308: the
+    /// answer is not representable, and no ∞ or NaN is returned instead.
+    Overflow {
+        /// The quantity, e.g. `irradiance`.
+        quantity: &'static str,
+    },
+    /// A bounded numerical step (the quadrature over a disk's visible rim)
+    /// used its whole work budget without reaching its error target.
+    Unresolved {
+        /// What could not be resolved.
+        what: &'static str,
+        /// The value reached.
+        value: f64,
+        /// The error bound it achieved (absolute, same unit as `value`).
+        error_bound: f64,
+    },
 }
 
 impl fmt::Display for AnalyticError {
@@ -51,6 +68,20 @@ impl fmt::Display for AnalyticError {
                 write!(f, "the receiver lies inside or on the {light}")
             }
             AnalyticError::BadPolygon { reason } => write!(f, "bad polygon: {reason}"),
+            AnalyticError::Overflow { quantity } => {
+                write!(
+                    f,
+                    "the {quantity} overflows: its true value exceeds 1.8e308"
+                )
+            }
+            AnalyticError::Unresolved {
+                what,
+                value,
+                error_bound,
+            } => write!(
+                f,
+                "{what} not resolved within its work bound: {value} ± {error_bound}"
+            ),
         }
     }
 }

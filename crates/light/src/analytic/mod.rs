@@ -33,12 +33,19 @@
 //! polygons that are degenerate, non-planar or non-convex return an
 //! [`AnalyticError`] naming the parameter.
 
+#[cfg(test)]
+mod accuracy;
 pub mod cap;
 pub mod disk;
 pub mod error;
+mod lambert;
+#[cfg(test)]
+pub(crate) mod oracle;
 pub mod point;
 pub mod polygon;
 pub(crate) mod quadrature;
+mod rim;
+mod scaled;
 pub mod sky;
 pub mod sphere;
 #[cfg(test)]
@@ -47,11 +54,14 @@ pub(crate) mod test_support;
 mod tests;
 
 pub use cap::cap_projected_solid_angle;
-pub use disk::{disk_coaxial_irradiance, disk_irradiance, disk_parallel_offset_irradiance};
+pub use disk::{
+    disk_coaxial_irradiance, disk_irradiance, disk_irradiance_with_error_bound,
+    disk_parallel_offset_irradiance, BoundedIrradiance, DISK_RELATIVE_ERROR_LIMIT,
+};
 pub use error::AnalyticError;
 pub use point::{directional_light_irradiance, point_light_irradiance};
 pub use polygon::{clip_polygon_to_hemisphere, polygon_irradiance};
-pub use sky::{dome_irradiance, sky_cap_irradiance, sky_irradiance};
+pub use sky::{dome_irradiance, sky_cap_irradiance, sky_irradiance, try_sky_irradiance};
 pub use sphere::sphere_irradiance;
 
 /// Which faces of a planar emitter (disk, polygon) emit.

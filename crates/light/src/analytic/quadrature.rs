@@ -50,39 +50,98 @@ fn gk15<F: Fn(f64) -> f64>(f: &F, a: f64, b: f64) -> (f64, f64, f64) {
     (k * h, g * h, kabs * h.abs())
 }
 
+/// The result of a bounded quadrature: the Kronrod estimate and an error
+/// bound for it, Σ over the final subintervals of max(|K − G|, 50ε∫|f|)
+/// (|K − G| is the Gauss–Kronrod pair's difference, a conservative bound on
+/// the error of the Kronrod estimate on subintervals where the integrand is
+/// smooth: there the true error is ≈ 200|K − G|^{3/2}, QUADPACK's model).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Integral {
+    /// ∫_a^b f, the Kronrod estimate.
+    pub value: f64,
+    /// Its error bound (absolute).
+    pub error: f64,
+    /// Whether every subinterval met its tolerance within the budget.
+    pub converged: bool,
+}
+
+/// The default work bound: at most this many G–K(7, 15) panels, i.e.
+/// 15 × 2048 = 30 720 evaluations of the integrand.
+pub(crate) const MAX_PANELS: usize = 2048;
+
 /// ∫_a^b f with local absolute tolerance `rel_tol · ∫|f|` on |K − G| per
-/// subinterval (scaled by √½ per bisection level), to a depth of 60. The
-/// Kronrod estimate's true error is far below |K − G| on smooth pieces
-/// (QUADPACK's estimate is 200|K − G|^{3/2}), so `rel_tol = 1e-14` gives
-/// results accurate to ~1e-16 relative on analytic integrands.
-pub(crate) fn integrate<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) -> f64 {
+/// subinterval (scaled by √½ per bisection level), bisecting depth first,
+/// with at most [`MAX_PANELS`] panels in all: the work is bounded whatever
+/// the integrand (a NaN or a noisy integrand that never meets the tolerance
+/// only exhausts the budget). The Kronrod estimate's true error is far
+/// below |K − G| on smooth pieces, so `rel_tol = 1e-14` gives results
+/// accurate to ~1e-16 relative on analytic integrands.
+pub(crate) fn integrate_bounded<F: Fn(f64) -> f64>(
+    f: F,
+    a: f64,
+    b: f64,
+    rel_tol: f64,
+    max_panels: usize,
+) -> Integral {
     if a == b {
-        return 0.0;
+        return Integral {
+            value: 0.0,
+            error: 0.0,
+            converged: true,
+        };
     }
-    let (k, g, kabs) = gk15(&f, a, b);
-    let tol = rel_tol * kabs.max(f64::MIN_POSITIVE);
-    refine(&f, a, b, (k, g, kabs), tol, 0)
+    let first = gk15(&f, a, b);
+    let tol = rel_tol * first.2.max(f64::MIN_POSITIVE);
+    let mut budget = max_panels.saturating_sub(1);
+    let (value, error, converged) = refine(&f, a, b, first, tol, &mut budget);
+    Integral {
+        value,
+        error,
+        converged,
+    }
+}
+
+#[cfg(test)]
+/// [`integrate_bounded`]'s value with the default budget.
+pub(crate) fn integrate<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) -> f64 {
+    integrate_bounded(f, a, b, rel_tol, MAX_PANELS).value
 }
 
 /// Refines [a, b] until |K − G| is below `tol` or below the rounding floor
-/// 50 ε ∫_a^b |f| (beyond which bisection cannot help), to depth 60.
+/// 50 ε ∫_a^b |f| (beyond which bisection cannot help), while the budget
+/// of panels lasts. Returns (value, error bound, converged).
 fn refine<F: Fn(f64) -> f64>(
     f: &F,
     a: f64,
     b: f64,
     (k, g, kabs): (f64, f64, f64),
     tol: f64,
-    depth: u32,
-) -> f64 {
+    budget: &mut usize,
+) -> (f64, f64, bool) {
     let m = 0.5 * (a + b);
     let floor = 50.0 * f64::EPSILON * kabs;
-    if (k - g).abs() <= tol.max(floor) || depth >= 60 || m == a || m == b {
-        return k;
+    let diff = (k - g).abs();
+    if diff <= tol.max(floor) {
+        return (k, diff.max(floor), true);
     }
+    if *budget < 2 || m == a || m == b || !diff.is_finite() {
+        return (
+            k,
+            if diff.is_finite() {
+                diff
+            } else {
+                f64::INFINITY
+            },
+            false,
+        );
+    }
+    *budget -= 2;
     let left = gk15(f, a, m);
     let right = gk15(f, m, b);
     let t = tol * std::f64::consts::FRAC_1_SQRT_2;
-    refine(f, a, m, left, t, depth + 1) + refine(f, m, b, right, t, depth + 1)
+    let (vl, el, cl) = refine(f, a, m, left, t, budget);
+    let (vr, er, cr) = refine(f, m, b, right, t, budget);
+    (vl + vr, el + er, cl && cr)
 }
 
 #[cfg(test)]
@@ -95,5 +154,59 @@ mod tests {
         assert!((v - (0.045 + 0.245)).abs() < 1e-15);
         let v = super::integrate(|x: f64| x.sqrt(), 0.0, 1.0, 1e-14);
         assert!((v - 2.0 / 3.0).abs() < 1e-13);
+    }
+
+    /// Adversarial integrands stop within the budget: a NaN-valued one
+    /// (never converges), pure noise, and 1/√|x| with its singularity
+    /// inside; each reports `converged = false` or an honest error bound.
+    #[test]
+    fn stops_within_its_work_bound() {
+        use std::cell::Cell;
+        let calls = Cell::new(0usize);
+        let r = super::integrate_bounded(
+            |_| {
+                calls.set(calls.get() + 1);
+                f64::NAN
+            },
+            0.0,
+            1.0,
+            1e-14,
+            super::MAX_PANELS,
+        );
+        assert!(!r.converged && calls.get() <= 15);
+        calls.set(0);
+        let r = super::integrate_bounded(
+            |x: f64| {
+                calls.set(calls.get() + 1);
+                ((x * 1e9).sin() * 1e6).fract()
+            },
+            0.0,
+            1.0,
+            1e-14,
+            super::MAX_PANELS,
+        );
+        assert!(calls.get() <= 15 * super::MAX_PANELS, "{}", calls.get());
+        assert!(!r.converged && r.error > 0.0);
+        calls.set(0);
+        let r = super::integrate_bounded(
+            |x: f64| {
+                calls.set(calls.get() + 1);
+                1.0 / (x - 0.3).abs().sqrt()
+            },
+            0.0,
+            1.0,
+            1e-14,
+            super::MAX_PANELS,
+        );
+        assert!(calls.get() <= 15 * super::MAX_PANELS);
+        // ∫ = 2(√0.3 + √0.7); the reported bound covers the true error.
+        let exact = 2.0 * (0.3f64.sqrt() + 0.7f64.sqrt());
+        assert!(
+            (r.value - exact).abs() <= r.error,
+            "{} {} {}",
+            r.value,
+            exact,
+            r.error
+        );
     }
 }

@@ -2,6 +2,7 @@
 
 use super::cap::cap_projected_solid_angle;
 use super::error::{finite, unit, AnalyticError};
+use super::scaled;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -18,6 +19,20 @@ pub fn sky_irradiance(radiance: f64) -> f64 {
     crate::radiometry::uniform_hemisphere_irradiance(radiance)
 }
 
+/// [`sky_irradiance`] with its overflow reported: E = Lπ exceeds f64::MAX
+/// for L > 5.7e307, which is [`AnalyticError::Overflow`] (never ∞), and a
+/// non-finite L is [`AnalyticError::NotFinite`].
+///
+/// ```
+/// use lambert_light::analytic::{try_sky_irradiance, AnalyticError};
+/// assert_eq!(try_sky_irradiance(2.0), Ok(2.0 * std::f64::consts::PI));
+/// assert_eq!(try_sky_irradiance(1e308), Err(AnalyticError::Overflow { quantity: "irradiance" }));
+/// ```
+pub fn try_sky_irradiance(radiance: f64) -> Result<f64, AnalyticError> {
+    finite("radiance", radiance)?;
+    scaled::product("irradiance", &[radiance, PI])
+}
+
 /// A uniform dome (the hemisphere of directions about `zenith`) of
 /// radiance L over a receiver of normal `n` tilted by β from the zenith:
 /// E = Lπ (1 + cos β)/2, W/m² (closed form; the cap of half-angle π/2).
@@ -26,7 +41,10 @@ pub fn dome_irradiance(radiance: f64, normal: DVec3, zenith: DVec3) -> Result<f6
     finite("radiance", radiance)?;
     let n = unit("normal", normal)?;
     let z = unit("zenith", zenith)?;
-    Ok(radiance * PI * 0.25 * (n + z).length_squared())
+    scaled::product(
+        "irradiance",
+        &[radiance, PI * 0.25 * (n + z).length_squared()],
+    )
 }
 
 /// A uniform sky of radiance L inside the cone of directions of unit
@@ -62,5 +80,8 @@ pub fn sky_cap_irradiance(
     }
     let (sg, cg) = half_angle.sin_cos();
     let cb = n.dot(a);
-    Ok(radiance * cap_projected_solid_angle(cb, sg.max(0.0), cg))
+    scaled::product(
+        "irradiance",
+        &[radiance, cap_projected_solid_angle(cb, sg.max(0.0), cg)],
+    )
 }

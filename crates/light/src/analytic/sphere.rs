@@ -1,7 +1,9 @@
 //! A uniform spherical light.
 
-use super::cap::cap_projected_solid_angle;
+use super::cap::cap_over_sin2;
+use super::disk::power_of_two_above;
 use super::error::{finite, finite3, positive, unit, AnalyticError};
+use super::scaled;
 use glam::DVec3;
 
 /// A uniform sphere of radiance L (centre `center`, radius r) seen from a
@@ -9,14 +11,19 @@ use glam::DVec3;
 ///
 /// Seen from outside, the sphere covers the cap of directions of axis
 /// a = (c − p)/d and angular radius α, sin α = r/d, so E = L P(β, α) with
-/// cos β = n·a ([`cap_projected_solid_angle`]): E = Lπ sin²α cos β when the
+/// cos β = n·a ([`super::cap_projected_solid_angle`]): E = Lπ sin²α cos β when the
 /// sphere is wholly above the horizon (β + α ≤ π/2), Snyder's (1996)
 /// horizon-clipped form rewritten without cancellation when it straddles,
 /// 0 below. sin α = r/d and cos α = √((d − r)(d + r))/d are exact to
 /// rounding for α = 1e-8 and for receivers almost touching the sphere.
 ///
-/// Errors: non-finite input, a non-unit normal, r ≤ 0, or `p` inside or on
-/// the sphere ([`AnalyticError::ReceiverInsideLight`]).
+/// Lengths are rescaled by a power of two first (no overflow of c − p or
+/// of |c − p|²), and E = L·(P/sin²α)·sin α·sin α is formed without
+/// intermediate underflow or overflow.
+///
+/// Errors: non-finite input, a non-unit normal, r ≤ 0, `p` inside or on
+/// the sphere ([`AnalyticError::ReceiverInsideLight`]), or E beyond
+/// f64::MAX ([`AnalyticError::Overflow`]).
 ///
 /// ```
 /// use glam::DVec3;
@@ -38,7 +45,12 @@ pub fn sphere_irradiance(
     let n = unit("normal", normal)?;
     let c = finite3("center", center)?;
     let r = positive("radius", radius)?;
-    let v = c - p;
+    // Exact power-of-two rescaling (c − p and |c − p|² may overflow or
+    // underflow otherwise): a receiver on a sphere of radius 1e308 centred
+    // 1e308 away is on it, not at an infinite distance.
+    let k = power_of_two_above(c.abs().max_element().max(p.abs().max_element()).max(r));
+    let v = c / k - p / k;
+    let r = r / k;
     let d = v.length();
     if !(d > r) {
         return Err(AnalyticError::ReceiverInsideLight { light: "sphere" });
@@ -46,5 +58,7 @@ pub fn sphere_irradiance(
     let sg = r / d;
     let cg = ((d - r) * (d + r)).sqrt() / d;
     let cb = n.dot(v) / d;
-    Ok(radiance * cap_projected_solid_angle(cb, sg, cg))
+    // E = L · (P/sin²γ) · sin γ · sin γ, without underflow of sin²γ.
+    let (q, s) = cap_over_sin2(cb, sg, cg);
+    scaled::product("irradiance", &[radiance, q, s, s])
 }

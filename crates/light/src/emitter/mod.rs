@@ -72,7 +72,7 @@ impl Emitter {
     pub fn check_receiver(&self, receiver: &Receiver) -> Result<(), EmitterError> {
         if let Emitter::Sphere(s) = self {
             if s.sphere.contains(receiver.point) {
-                let d = (receiver.point - s.sphere.center()).length();
+                let d = s.sphere.distance_to_center(receiver.point);
                 return Err(EmitterError::new(
                     "receiver.point",
                     format!(
@@ -140,11 +140,25 @@ impl Emitter {
     /// ([`crate::analytic`]: Lπ for a sky, the cap formula for sky caps and
     /// spheres, the disk and polygon formulas with clipping at the
     /// receiver's plane, inverse-square and cosine laws for delta lights);
-    /// `None` only if the analytic function rejects the geometry.
+    /// `None` if the analytic function rejects the geometry or the result
+    /// is not representable ([`Emitter::try_closed_form_irradiance`] says
+    /// which).
     pub fn closed_form_irradiance(&self, receiver: &Receiver) -> Option<f64> {
+        self.try_closed_form_irradiance(receiver).ok()
+    }
+
+    /// [`Emitter::closed_form_irradiance`] with the reason when there is no
+    /// value: the geometry rejected, the irradiance overflowing f64
+    /// ([`crate::analytic::AnalyticError::Overflow`], e.g. a sky of radiance
+    /// 1e308), or a quadrature that did not resolve within its work bound
+    /// ([`crate::analytic::AnalyticError::Unresolved`]). Never ∞ or NaN.
+    pub fn try_closed_form_irradiance(
+        &self,
+        receiver: &Receiver,
+    ) -> Result<f64, crate::analytic::AnalyticError> {
         use crate::analytic::{
-            disk_irradiance, polygon_irradiance, sky_cap_irradiance, sky_irradiance,
-            sphere_irradiance, Emission,
+            disk_irradiance, polygon_irradiance, sky_cap_irradiance, sphere_irradiance,
+            try_sky_irradiance, AnalyticError, Emission,
         };
         let emission = |two_sided: bool| {
             if two_sided {
@@ -155,10 +169,10 @@ impl Emitter {
         };
         let (p, n) = (receiver.point, receiver.normal);
         match self {
-            Emitter::Sky(s) => Some(sky_irradiance(s.radiance)),
-            Emitter::SkyCap(c) => sky_cap_irradiance(c.radiance, n, c.axis, c.half_angle).ok(),
+            Emitter::Sky(s) => try_sky_irradiance(s.radiance),
+            Emitter::SkyCap(c) => sky_cap_irradiance(c.radiance, n, c.axis, c.half_angle),
             Emitter::Sphere(s) => {
-                sphere_irradiance(s.radiance, p, n, s.sphere.center(), s.sphere.radius()).ok()
+                sphere_irradiance(s.radiance, p, n, s.sphere.center(), s.sphere.radius())
             }
             Emitter::Disk(d) => disk_irradiance(
                 d.radiance,
@@ -168,17 +182,24 @@ impl Emitter {
                 d.disk.normal(),
                 d.disk.radius(),
                 emission(d.two_sided),
-            )
-            .ok(),
+            ),
             Emitter::Polygon(q) => polygon_irradiance(
                 q.radiance,
                 p,
                 n,
                 q.polygon.vertices(),
                 emission(q.two_sided),
-            )
-            .ok(),
-            Emitter::Point(_) | Emitter::Directional(_) => Some(self.delta_irradiance(receiver)),
+            ),
+            Emitter::Point(_) | Emitter::Directional(_) => {
+                let e = self.delta_irradiance(receiver);
+                if e.is_finite() {
+                    Ok(e)
+                } else {
+                    Err(AnalyticError::Overflow {
+                        quantity: "irradiance",
+                    })
+                }
+            }
         }
     }
 }
