@@ -7,6 +7,7 @@ macro_rules! parallelogram_impl {
         use crate::ray::$p::{Hit, Intersect, Ray};
         use crate::solid_angle::$p::triangle_solid_angle;
         use crate::validate;
+        use crate::validate::$p::power_of_two_above;
         use crate::GeometryError;
 
         /// The parallelogram corner + s·edge0 + t·edge1, (s, t) ∈ [0, 1]²;
@@ -54,27 +55,26 @@ macro_rules! parallelogram_impl {
                 validate::finite3("corner", wide3(corner))?;
                 validate::finite3("edge0", wide3(edge0))?;
                 validate::finite3("edge1", wide3(edge1))?;
-                let n = edge0.cross(edge1);
-                let area = n.length();
-                if !area.is_finite() {
-                    return Err(GeometryError::Shape {
-                        field: "edges",
-                        problem: "are too large: the area overflows".into(),
-                    });
-                }
-                if !(area > 0.0) {
+                // Judged on the edges divided by a power of two (exact).
+                let k = power_of_two_above(edge0.abs().max(edge1.abs()).max_element());
+                let scaled = (edge0 / k).cross(edge1 / k);
+                if !(scaled.length() > 0.0) {
                     return Err(GeometryError::Shape {
                         field: "edges",
                         problem: "span zero area (parallel or zero edges)".into(),
                     });
                 }
+                let n = edge0.cross(edge1);
+                let area = n.length();
+                let normal = scaled / scaled.length();
                 Ok(Parallelogram {
                     corner,
                     edge0,
                     edge1,
-                    normal: n / area,
+                    normal,
                     area,
-                    dual: n / (area * area),
+                    // N/|N|² = n̂/|N|, finite whenever |N| is.
+                    dual: normal / area,
                 })
             }
 

@@ -7,6 +7,7 @@ macro_rules! polygon_impl {
         use crate::precision::$p::{wide3, Real, V2, V3};
         use crate::ray::$p::{Hit, Intersect, Ray};
         use crate::solid_angle::$p::convex_polygon_solid_angle;
+        use crate::validate::$p::power_of_two_above;
         use crate::GeometryError;
 
         /// A planar, strictly convex polygon; its front face is the side
@@ -73,10 +74,19 @@ macro_rules! polygon_impl {
                         )));
                     }
                 }
+                // Validation runs on the vertices divided by a power of two
+                // (exact), so that no product of coordinates overflows or
+                // underflows: a polygon 1e-300 or 1e300 in size is checked
+                // like one of size 1.
+                let largest = vertices
+                    .iter()
+                    .fold(0.0, |m: Real, v| m.max(v.abs().max_element()));
+                let k = power_of_two_above(largest);
+                let scaled: Vec<V3> = vertices.iter().map(|&v| v / k).collect();
                 let n = vertices.len();
                 let mut newell = V3::ZERO;
                 for i in 0..n {
-                    let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                    let (a, b) = (scaled[i], scaled[(i + 1) % n]);
                     newell += V3::new(
                         (a.y - b.y) * (a.z + b.z),
                         (a.z - b.z) * (a.x + b.x),
@@ -84,35 +94,28 @@ macro_rules! polygon_impl {
                     );
                 }
                 let twice_area = newell.length();
-                let extent = vertices
+                let extent = scaled
                     .iter()
-                    .map(|v| (*v - vertices[0]).length())
+                    .map(|v| (*v - scaled[0]).length())
                     .fold(0.0, Real::max);
-                if !twice_area.is_finite() || !extent.is_finite() {
-                    // Otherwise the normal would be NaN and every check
-                    // below would pass.
-                    return Err(shape(format!(
-                        "is too large: its area or extent overflows (area {:e}, extent {extent:e})",
-                        0.5 * twice_area
-                    )));
-                }
                 if !(twice_area > 0.0) {
                     return Err(shape(
                         "has zero area (collinear or repeated vertices)".into(),
                     ));
                 }
                 let normal = newell / twice_area;
-                for (i, v) in vertices.iter().enumerate() {
-                    let off = normal.dot(*v - vertices[0]).abs();
+                for (i, v) in scaled.iter().enumerate() {
+                    let off = normal.dot(*v - scaled[0]).abs();
                     if off > PLANARITY * extent {
                         return Err(shape(format!(
-                            "is not planar: vertex {i} lies {off:e} from the plane of the others (tolerance {:e})",
-                            PLANARITY * extent
+                            "is not planar: vertex {i} lies {:e} from the plane of the others (tolerance {:e})",
+                            off * k,
+                            PLANARITY * extent * k
                         )));
                     }
                 }
                 for i in 0..n {
-                    let (a, b, c) = (vertices[i], vertices[(i + 1) % n], vertices[(i + 2) % n]);
+                    let (a, b, c) = (scaled[i], scaled[(i + 1) % n], scaled[(i + 2) % n]);
                     let turn = (b - a).cross(c - b).dot(normal);
                     if turn <= 0.0 {
                         return Err(shape(format!(
@@ -124,7 +127,7 @@ macro_rules! polygon_impl {
                 Ok(ConvexPolygon {
                     vertices,
                     frame: Frame::from_normal(normal),
-                    area: 0.5 * twice_area,
+                    area: 0.5 * twice_area * k * k,
                 })
             }
 
@@ -146,7 +149,10 @@ macro_rules! polygon_impl {
                 &self.frame
             }
 
-            /// The area, in m².
+            /// The area, in m²: 0 when it underflows (a polygon 1e-160 m
+            /// across) and ∞ when it overflows (1e160 m across). Validity
+            /// and the polygon's angles do not depend on its size; what
+            /// needs the area (area sampling) gives up on such polygons.
             #[inline]
             pub fn area(&self) -> Real {
                 self.area
@@ -219,6 +225,15 @@ mod tests {
     use crate::f64::{ConvexPolygon, Intersect, Ray};
     use glam::DVec3;
 
+    fn square_vertices() -> [DVec3; 4] {
+        [
+            DVec3::new(-1.0, -1.0, 2.0),
+            DVec3::new(1.0, -1.0, 2.0),
+            DVec3::new(1.0, 1.0, 2.0),
+            DVec3::new(-1.0, 1.0, 2.0),
+        ]
+    }
+
     #[test]
     fn validates_and_intersects() {
         let square = ConvexPolygon::new(vec![
@@ -252,6 +267,12 @@ mod tests {
             DVec3::new(0.0, 2.0, 0.0),
         ]);
         assert!(concave.unwrap_err().to_string().contains("convex"));
+        // Validity does not depend on size: 1e-300 and 1e300 squares are
+        // squares (their areas are beyond f64 and say so with 0 and ∞).
+        let tiny = ConvexPolygon::new(square_vertices().map(|v| v * 1e-300).to_vec()).unwrap();
+        assert_eq!((tiny.normal(), tiny.area()), (DVec3::Z, 0.0));
+        let huge = ConvexPolygon::new(square_vertices().map(|v| v * 1e300).to_vec()).unwrap();
+        assert_eq!((huge.normal(), huge.area()), (DVec3::Z, f64::INFINITY));
         let e = ConvexPolygon::new(vec![DVec3::ZERO, DVec3::X]).unwrap_err();
         assert_eq!(e.to_string(), "vertices: needs at least 3 vertices, got 2");
     }

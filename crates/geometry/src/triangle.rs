@@ -6,6 +6,7 @@ macro_rules! triangle_impl {
         use crate::ray::$p::{gamma, Hit, Intersect, Ray};
         use crate::solid_angle::$p::triangle_solid_angle;
         use crate::validate;
+        use crate::validate::$p::power_of_two_above;
         use crate::GeometryError;
 
         /// A triangle with vertices v₀, v₁, v₂; its front face is the side
@@ -50,20 +51,17 @@ macro_rules! triangle_impl {
 
         impl Triangle {
             /// The triangle (v0, v1, v2). Errors name the field: a
-            /// non-finite vertex (`v0`, `v1`, `v2`), or zero (or
-            /// overflowing) area (`vertices`).
+            /// non-finite vertex (`v0`, `v1`, `v2`), or collinear or
+            /// repeated vertices (`vertices`), judged at any size.
             pub fn new(v0: V3, v1: V3, v2: V3) -> Result<Self, GeometryError> {
                 validate::finite3("v0", wide3(v0))?;
                 validate::finite3("v1", wide3(v1))?;
                 validate::finite3("v2", wide3(v2))?;
-                let n = (v1 - v0).cross(v2 - v0);
+                // The cross product of the edges divided by a power of two
+                // (exact), so that it neither overflows nor underflows.
+                let k = power_of_two_above(v0.abs().max(v1.abs()).max(v2.abs()).max_element());
+                let n = (v1 / k - v0 / k).cross(v2 / k - v0 / k);
                 let len = n.length();
-                if !len.is_finite() {
-                    return Err(GeometryError::Shape {
-                        field: "vertices",
-                        problem: "is too large: its area overflows".into(),
-                    });
-                }
                 if !(len > 0.0) {
                     return Err(GeometryError::Shape {
                         field: "vertices",
@@ -73,7 +71,7 @@ macro_rules! triangle_impl {
                 Ok(Triangle {
                     vertices: [v0, v1, v2],
                     normal: n / len,
-                    area: 0.5 * len,
+                    area: 0.5 * len * k * k,
                 })
             }
 
@@ -89,7 +87,8 @@ macro_rules! triangle_impl {
                 self.normal
             }
 
-            /// The area, in m².
+            /// The area, in m²: 0 when it underflows, ∞ when it overflows
+            /// (validity does not depend on size).
             #[inline]
             pub fn area(&self) -> Real {
                 self.area
@@ -261,6 +260,10 @@ mod tests {
         let e = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::X * 2.0).unwrap_err();
         assert_eq!(e.field(), "vertices");
         assert!(e.to_string().contains("zero area"));
+        // Any size: a 1e-300 triangle is a triangle.
+        let tiny = Triangle::new(DVec3::ZERO, DVec3::X * 1e-300, DVec3::Y * 1e-300).unwrap();
+        assert_eq!(tiny.normal(), DVec3::Z);
+        assert_eq!(tiny.area(), 0.0, "its area underflows, and says so");
         let e = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::new(f64::NAN, 0.0, 0.0));
         assert_eq!(e.unwrap_err().field(), "v2");
     }

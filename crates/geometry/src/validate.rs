@@ -62,8 +62,23 @@ pub fn non_negative(field: &'static str, value: f64) -> Result<(), GeometryError
 
 macro_rules! validate_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
-        use crate::precision::$p::{wide3, V3};
+        use crate::precision::$p::{wide3, Real, V3};
         use crate::GeometryError;
+
+        /// The power of two 2ᵉ ≥ `x` nearest above it for finite x > 0
+        /// (clamped to the normal range), 1 for x = 0: dividing points by it
+        /// is exact, brings their largest coordinate into [½, 1], and lets
+        /// products of coordinates (cross products, Newell's normal) neither
+        /// overflow nor underflow whatever the shape's size.
+        #[inline]
+        pub fn power_of_two_above(x: Real) -> Real {
+            if !(x > 0.0) || !x.is_finite() {
+                return 1.0;
+            }
+            let e = x.log2().ceil() as i32;
+            let (lo, hi) = (Real::MIN_EXP - 1, Real::MAX_EXP - 1);
+            (2.0 as Real).powi(e.clamp(lo, hi))
+        }
 
         /// `v` normalised (any finite, non-zero length); errors if it is
         /// zero or not finite. The result is a unit vector to a few ulps.

@@ -200,18 +200,24 @@ macro_rules! area_light_impl {
         }
 
         impl PolygonAreaSampler {
-            /// The sampler of `polygon` (fan triangles of zero area, which a
-            /// valid convex polygon does not have, would be skipped).
+            /// The sampler of `polygon`. A polygon whose area is beyond the
+            /// range of the precision (0 or ∞, see
+            /// [`ConvexPolygon::area`]) has no area density: the sampler
+            /// then holds no triangle and gives no sample.
             pub fn new(polygon: ConvexPolygon) -> Self {
                 let v = polygon.vertices();
                 let mut triangles = Vec::new();
                 let mut cumulative = Vec::new();
                 let mut total = 0.0;
+                let usable = polygon.area() > 0.0 && polygon.area().is_finite();
                 for i in 1..v.len() - 1 {
-                    if let Ok(t) = Triangle::new(v[0], v[i], v[i + 1]) {
-                        total += t.area();
-                        triangles.push(UniformTriangle::new(&t));
-                        cumulative.push(total);
+                    match Triangle::new(v[0], v[i], v[i + 1]) {
+                        Ok(t) if usable => {
+                            total += t.area();
+                            triangles.push(UniformTriangle::new(&t));
+                            cumulative.push(total);
+                        }
+                        _ => {}
                     }
                 }
                 PolygonAreaSampler {

@@ -7,6 +7,7 @@
 //! class; the other tests assert the documented bound per class.
 
 use super::oracle;
+use super::test_support::raw;
 use super::test_support::{cap_hemisphere_form, disk_area_form};
 use super::*;
 use glam::{DQuat, DVec3};
@@ -85,7 +86,7 @@ pub(crate) fn far_polygons() -> Vec<Case> {
                 out.push(Case {
                     key: format!("D={d:e}"),
                     label: format!("far polygon D={d:e} rot {ri} elev {elev}"),
-                    value: polygon_irradiance(1.0, p, n, &verts, Emission::TwoSided),
+                    value: raw::polygon_irradiance(1.0, p, n, &verts, Emission::TwoSided),
                     exact: oracle::polygon(1.0, p, n, &verts, true),
                 });
             }
@@ -120,7 +121,7 @@ pub(crate) fn sliver_polygons() -> Vec<Case> {
                     base + up * top - w,
                 ];
                 let verts: Vec<DVec3> = local.iter().map(|&x| p + q * x).collect();
-                let value = polygon_irradiance(1.0, p, n, &verts, Emission::TwoSided);
+                let value = raw::polygon_irradiance(1.0, p, n, &verts, Emission::TwoSided);
                 let exact = oracle::polygon(1.0, p, n, &verts, true);
                 out.push(Case {
                     key: format!("h={h:e}"),
@@ -158,7 +159,7 @@ pub(crate) fn barely_showing_caps() -> Vec<Case> {
                 out.push(Case {
                     key: format!("f={f:e}"),
                     label: format!("sphere γ={gamma:e} f={f:e} rot {ri}"),
-                    value: sphere_irradiance(1.0, p, n, c, r),
+                    value: raw::sphere_irradiance(1.0, p, n, c, r),
                     exact: oracle::sphere(1.0, p, n, c, r).expect("outside"),
                 });
             }
@@ -196,7 +197,7 @@ pub(crate) fn straddling_disks() -> Vec<Case> {
                         label: format!(
                             "straddling disk D={d:e} frac={frac:e} tilt {tilt} rot {ri}"
                         ),
-                        value: disk_irradiance(1.0, p, n, c, facing, r, Emission::OneSided),
+                        value: raw::disk_irradiance(1.0, p, n, c, facing, r, Emission::OneSided),
                         exact: oracle::disk(1.0, p, n, c, facing, r, false),
                     });
                 }
@@ -227,14 +228,14 @@ pub(crate) fn extreme_magnitudes() -> Vec<Case> {
             out.push(Case {
                 key: format!("s={s:e}"),
                 label: format!("sphere s={s:e} L={l:e}"),
-                value: sphere_irradiance(l, p, n, c, 0.7 * s),
+                value: raw::sphere_irradiance(l, p, n, c, 0.7 * s),
                 exact,
             });
             let m = DVec3::new(0.0, -0.6, -0.8);
             out.push(Case {
                 key: format!("s={s:e}"),
                 label: format!("disk s={s:e} L={l:e}"),
-                value: disk_irradiance(l, p, n, c, m, 0.7 * s, Emission::OneSided),
+                value: raw::disk_irradiance(l, p, n, c, m, 0.7 * s, Emission::OneSided),
                 exact: oracle::disk(l, p, n, c, m, 0.7 * s, false),
             });
             let verts_s: Vec<DVec3> = polygon_around(DVec3::ZERO, -m, 0, 0.2)
@@ -244,7 +245,7 @@ pub(crate) fn extreme_magnitudes() -> Vec<Case> {
             out.push(Case {
                 key: format!("s={s:e}"),
                 label: format!("polygon s={s:e} L={l:e}"),
-                value: polygon_irradiance(l, p, n, &verts_s, Emission::OneSided),
+                value: raw::polygon_irradiance(l, p, n, &verts_s, Emission::OneSided),
                 exact: oracle::polygon(l, p, n, &verts_s, false),
             });
         }
@@ -254,7 +255,7 @@ pub(crate) fn extreme_magnitudes() -> Vec<Case> {
     out.push(Case {
         key: "issue".into(),
         label: "disk r=1e-300 L=1e300 at 1".into(),
-        value: disk_irradiance(
+        value: raw::disk_irradiance(
             1e300,
             DVec3::ZERO,
             DVec3::Z,
@@ -483,7 +484,7 @@ fn huge_straddling_disk_answers() {
         } else {
             Emission::OneSided
         };
-        let b = disk_irradiance_with_error_bound(1.0, p, n, c, m, 1e188, emission).unwrap();
+        let b = raw::disk_irradiance_with_error_bound(1.0, p, n, c, m, 1e188, emission).unwrap();
         let exact = oracle::disk(1.0, p, n, c, m, 1e188, two);
         assert!(
             exact.rel_err(b.irradiance) < 1e-9,
@@ -506,19 +507,19 @@ fn overflow_and_receiver_on_the_light_are_errors() {
     assert_eq!(dome_irradiance(1e308, DVec3::Z, DVec3::Z), overflow);
     // A sphere covering a wide cone overhead: P = π·0.95² > 1.8, E > 1.8e308.
     assert_eq!(
-        sphere_irradiance(1e308, DVec3::ZERO, DVec3::Z, DVec3::Z * 2.0, 1.9),
+        raw::sphere_irradiance(1e308, DVec3::ZERO, DVec3::Z, DVec3::Z * 2.0, 1.9),
         overflow
     );
     // A small one: P = π·1e-6, E = π·1e302.
-    let e = sphere_irradiance(1e308, DVec3::ZERO, DVec3::Z, DVec3::Z * 1e3, 1.0).unwrap();
+    let e = raw::sphere_irradiance(1e308, DVec3::ZERO, DVec3::Z, DVec3::Z * 1e3, 1.0).unwrap();
     assert!((e / (PI * 1e302 / (1.0 + 0.0)) - 1.0).abs() < 1e-6, "{e}");
     // On the light, at the top of the range.
     assert_eq!(
-        sphere_irradiance(1.0, DVec3::ZERO, DVec3::X, DVec3::X * 1e308, 1e308),
+        raw::sphere_irradiance(1.0, DVec3::ZERO, DVec3::X, DVec3::X * 1e308, 1e308),
         Err(AnalyticError::ReceiverInsideLight { light: "sphere" })
     );
     assert_eq!(
-        sphere_irradiance(1.0, DVec3::ZERO, DVec3::X, DVec3::X * 5e-324, 5e-324),
+        raw::sphere_irradiance(1.0, DVec3::ZERO, DVec3::X, DVec3::X * 5e-324, 5e-324),
         Err(AnalyticError::ReceiverInsideLight { light: "sphere" })
     );
     // A square of side 200 at height 1 overhead: P ≈ π − 0.02.
@@ -529,11 +530,11 @@ fn overflow_and_receiver_on_the_light_are_errors() {
         DVec3::new(-100.0, 100.0, 1.0),
     ];
     assert_eq!(
-        polygon_irradiance(1e308, DVec3::ZERO, DVec3::Z, &big, Emission::TwoSided),
+        raw::polygon_irradiance(1e308, DVec3::ZERO, DVec3::Z, &big, Emission::TwoSided),
         overflow
     );
     assert_eq!(
-        disk_irradiance(
+        raw::disk_irradiance(
             1e308,
             DVec3::ZERO,
             DVec3::Z,

@@ -30,10 +30,12 @@
 //! (R/D)², so a straddling disk at distance D loses about log₁₀(D/R)
 //! digits).
 
-use super::error::{finite, finite3, positive, unit, AnalyticError};
+use super::error::{finite, AnalyticError};
 use super::Emission;
 use super::{rim, scaled};
+use crate::receiver::Receiver;
 use glam::DVec3;
+use lambert_geometry::f64::Disk;
 use std::f64::consts::PI;
 
 /// A uniform disk of radiance L and radius R seen from a receiver on its
@@ -115,9 +117,9 @@ pub struct BoundedIrradiance {
 /// [`AnalyticError::Unresolved`] instead of a value: 1e-9.
 pub const DISK_RELATIVE_ERROR_LIMIT: f64 = 1e-9;
 
-/// A uniform disk light of radiance L (centre `center`, unit normal
-/// `disk_normal`, radius R), one-sided (emitting towards `disk_normal`) or
-/// two-sided, seen from a receiver at `p` with unit normal `n`.
+/// A uniform `disk` (centre c, unit normal m, radius R) of radiance L,
+/// one-sided (emitting towards m) or two-sided, seen from the `receiver` at
+/// p with unit normal n.
 ///
 /// Closed form (E = L n·J, module docs) when the disk lies wholly above the
 /// receiver's plane; when the receiver's plane cuts the disk, the contour
@@ -135,7 +137,7 @@ pub const DISK_RELATIVE_ERROR_LIMIT: f64 = 1e-9;
 /// `scaled` products): a disk of radius 1e-300 and radiance 1e300 at
 /// distance 1 gives π·1e-300.
 ///
-/// Errors: non-finite input, non-unit normals, R ≤ 0;
+/// Errors: a non-finite radiance;
 /// [`AnalyticError::Overflow`] when E exceeds f64::MAX;
 /// [`AnalyticError::Unresolved`] when the quadrature's error bound after its
 /// work budget exceeds [`DISK_RELATIVE_ERROR_LIMIT`] of the value (see
@@ -143,30 +145,22 @@ pub const DISK_RELATIVE_ERROR_LIMIT: f64 = 1e-9;
 ///
 /// ```
 /// use glam::DVec3;
+/// use lambert_geometry::f64::Disk;
 /// use lambert_light::analytic::{disk_coaxial_irradiance, disk_irradiance, Emission};
-/// let e = disk_irradiance(1.0, DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, 2.0), -DVec3::Z, 1.0,
-///                         Emission::OneSided).unwrap();
+/// use lambert_light::Receiver;
+/// let disk = Disk::new(DVec3::new(0.0, 0.0, 2.0), -DVec3::Z, 1.0)?;
+/// let up = Receiver::new(DVec3::ZERO, DVec3::Z)?;
+/// let e = disk_irradiance(&disk, Emission::OneSided, 1.0, &up)?;
 /// assert!((e - disk_coaxial_irradiance(1.0, 2.0, 1.0)).abs() < 1e-15);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[allow(clippy::too_many_arguments)]
 pub fn disk_irradiance(
-    radiance: f64,
-    p: DVec3,
-    normal: DVec3,
-    center: DVec3,
-    disk_normal: DVec3,
-    radius: f64,
+    disk: &Disk,
     emission: Emission,
+    radiance: f64,
+    receiver: &Receiver,
 ) -> Result<f64, AnalyticError> {
-    let b = disk_irradiance_with_error_bound(
-        radiance,
-        p,
-        normal,
-        center,
-        disk_normal,
-        radius,
-        emission,
-    )?;
+    let b = disk_irradiance_with_error_bound(disk, emission, radiance, receiver)?;
     if b.error_bound <= DISK_RELATIVE_ERROR_LIMIT * b.irradiance.abs() {
         Ok(b.irradiance)
     } else {
@@ -182,22 +176,15 @@ pub fn disk_irradiance(
 /// (0 when the disk is wholly above or below the horizon: closed form).
 /// The work is bounded (at most 30 720 evaluations of the rim integrand);
 /// the bound is what was reached, whether or not it met the 1e-14 target.
-#[allow(clippy::too_many_arguments)]
 pub fn disk_irradiance_with_error_bound(
-    radiance: f64,
-    p: DVec3,
-    normal: DVec3,
-    center: DVec3,
-    disk_normal: DVec3,
-    radius: f64,
+    disk: &Disk,
     emission: Emission,
+    radiance: f64,
+    receiver: &Receiver,
 ) -> Result<BoundedIrradiance, AnalyticError> {
     finite("radiance", radiance)?;
-    let p = finite3("p", p)?;
-    let n = unit("normal", normal)?;
-    let c = finite3("center", center)?;
-    let m = unit("disk_normal", disk_normal)?;
-    let r = positive("radius", radius)?;
+    let (p, n) = (receiver.point, receiver.normal);
+    let (c, m, r) = (disk.center(), disk.normal(), disk.radius());
     let (q, err, s) = disk_projected(p, n, c, m, r, emission);
     Ok(BoundedIrradiance {
         irradiance: scaled::product("irradiance", &[radiance, q, s, s])?,

@@ -1,39 +1,22 @@
 //! The error type of the analytic irradiance functions.
 
 use glam::DVec3;
+use lambert_geometry::f64::unit_vector;
+use lambert_geometry::{validate, GeometryError};
 use std::fmt;
 
-/// What was wrong with the input of an analytic irradiance function.
+/// Why an analytic irradiance function has no value to give: invalid
+/// input (validated by `lambert_geometry`'s rules, the same as every shape
+/// and emitter), a receiver inside the light, a result beyond the f64
+/// range, or a bounded numerical step that did not converge.
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnalyticError {
-    /// A parameter is NaN or infinite.
-    NotFinite {
-        /// The parameter.
-        field: &'static str,
-    },
-    /// A direction that must be unit length is not (to 1e-6).
-    NotUnit {
-        /// The parameter.
-        field: &'static str,
-        /// Its length.
-        length: f64,
-    },
-    /// A length that must be positive is not.
-    NotPositive {
-        /// The parameter.
-        field: &'static str,
-        /// Its value.
-        value: f64,
-    },
+    /// A parameter is invalid: not finite, a zero direction, out of range.
+    Input(GeometryError),
     /// The receiver is inside (or on) the light.
     ReceiverInsideLight {
         /// The light.
         light: &'static str,
-    },
-    /// A polygon is degenerate, non-planar or non-convex.
-    BadPolygon {
-        /// What is wrong with it.
-        reason: &'static str,
     },
     /// The true value of a quantity (the irradiance, or an intermediate
     /// that cannot be scaled away) exceeds the largest f64, 1.8e308: the
@@ -57,17 +40,10 @@ pub enum AnalyticError {
 impl fmt::Display for AnalyticError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            AnalyticError::NotFinite { field } => write!(f, "`{field}` is not finite"),
-            AnalyticError::NotUnit { field, length } => {
-                write!(f, "`{field}` must be a unit vector, its length is {length}")
-            }
-            AnalyticError::NotPositive { field, value } => {
-                write!(f, "`{field}` must be positive, got {value}")
-            }
+            AnalyticError::Input(e) => write!(f, "{e}"),
             AnalyticError::ReceiverInsideLight { light } => {
                 write!(f, "the receiver lies inside or on the {light}")
             }
-            AnalyticError::BadPolygon { reason } => write!(f, "bad polygon: {reason}"),
             AnalyticError::Overflow { quantity } => {
                 write!(
                     f,
@@ -88,38 +64,26 @@ impl fmt::Display for AnalyticError {
 
 impl std::error::Error for AnalyticError {}
 
+impl From<GeometryError> for AnalyticError {
+    fn from(e: GeometryError) -> Self {
+        AnalyticError::Input(e)
+    }
+}
+
+/// `x` if finite.
 pub(crate) fn finite(field: &'static str, x: f64) -> Result<f64, AnalyticError> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(AnalyticError::NotFinite { field })
-    }
+    validate::finite(field, x)?;
+    Ok(x)
 }
 
+/// `v` if finite.
 pub(crate) fn finite3(field: &'static str, v: DVec3) -> Result<DVec3, AnalyticError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(AnalyticError::NotFinite { field })
-    }
+    validate::finite3(field, v)?;
+    Ok(v)
 }
 
-pub(crate) fn positive(field: &'static str, x: f64) -> Result<f64, AnalyticError> {
-    finite(field, x)?;
-    if x > 0.0 {
-        Ok(x)
-    } else {
-        Err(AnalyticError::NotPositive { field, value: x })
-    }
-}
-
-/// Checks that `v` is finite and unit to 1e-6, and returns it renormalised.
+/// `v` normalised (any finite, non-zero length), by the one rule of
+/// `lambert_geometry::validate`.
 pub(crate) fn unit(field: &'static str, v: DVec3) -> Result<DVec3, AnalyticError> {
-    finite3(field, v)?;
-    let length = v.length();
-    if (length - 1.0).abs() <= 1e-6 {
-        Ok(v / length)
-    } else {
-        Err(AnalyticError::NotUnit { field, length })
-    }
+    Ok(unit_vector(field, v)?)
 }

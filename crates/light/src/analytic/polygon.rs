@@ -24,13 +24,12 @@
 //! chord's term (≈ its angle w) and the others cancel to a result ∝ h²w
 //! (about 2 log₁₀(1/h) digits lost; measured in the accuracy tests).
 
-use super::error::{finite, finite3, unit, AnalyticError};
+use super::error::{finite, AnalyticError};
 use super::scaled;
 use super::Emission;
+use crate::receiver::Receiver;
 use glam::DVec3;
-
-/// Relative tolerance of the planarity and convexity checks.
-const SHAPE_TOLERANCE: f64 = 1e-9;
+use lambert_geometry::f64::ConvexPolygon;
 
 /// The part of the polygon `vertices` with n·(x − p) > 0 (Sutherland–
 /// Hodgman against the receiver's plane through `p` with normal `n`).
@@ -52,88 +51,43 @@ pub fn clip_polygon_to_hemisphere(p: DVec3, n: DVec3, vertices: &[DVec3]) -> Vec
     out
 }
 
-/// Checks that the polygon has ≥ 3 finite vertices and is planar and
-/// convex; returns its right-hand-rule unit normal (Newell's method).
-pub(crate) fn polygon_normal(vertices: &[DVec3]) -> Result<DVec3, AnalyticError> {
-    if vertices.len() < 3 {
-        return Err(AnalyticError::BadPolygon {
-            reason: "fewer than 3 vertices",
-        });
-    }
-    for &v in vertices {
-        finite3("vertices", v)?;
-    }
-    let k = vertices.len();
-    let origin = vertices[0];
-    let mut area = DVec3::ZERO;
-    let mut size: f64 = 0.0;
-    for i in 0..k {
-        let (a, b) = (vertices[i] - origin, vertices[(i + 1) % k] - origin);
-        area += a.cross(b);
-        size = size.max(a.length());
-    }
-    let len = area.length();
-    if !(len > 0.0) || !(len > 1e-300 * size * size) {
-        return Err(AnalyticError::BadPolygon {
-            reason: "zero area",
-        });
-    }
-    let normal = area / len;
-    for &v in vertices {
-        if normal.dot(v - origin).abs() > SHAPE_TOLERANCE * size {
-            return Err(AnalyticError::BadPolygon {
-                reason: "vertices not coplanar (to 1e-9 of its size)",
-            });
-        }
-    }
-    for i in 0..k {
-        let (a, b, c) = (vertices[i], vertices[(i + 1) % k], vertices[(i + 2) % k]);
-        let turn = normal.dot((b - a).cross(c - b));
-        if turn < -SHAPE_TOLERANCE * (b - a).length() * (c - b).length() {
-            return Err(AnalyticError::BadPolygon {
-                reason: "not convex, or vertices out of order",
-            });
-        }
-    }
-    Ok(normal)
-}
-
-/// A uniform planar convex polygon light of radiance L, vertices in order
-/// (front face by the right-hand rule), one- or two-sided, seen from a
-/// receiver at `p` with unit normal `n` (closed form: Lambert's formula,
+/// A uniform planar convex `polygon` of radiance L (front face by the
+/// right-hand rule), one- or two-sided, seen from the `receiver` at p with
+/// unit normal n (closed form: Lambert's formula,
 /// E = (L/2) |Σ Γᵢ·n|, after clipping the polygon at the receiver's plane;
 /// module docs). A one-sided polygon seen from behind, or any polygon seen
 /// edge-on or wholly below the horizon, gives 0.
 ///
-/// Errors: non-finite input, non-unit normal, fewer than 3 vertices, zero
-/// area, non-planar (to 1e-9 of its size) or non-convex vertices.
+/// Errors: a non-finite radiance; E beyond f64::MAX
+/// ([`AnalyticError::Overflow`]). The polygon was validated when it was
+/// built (`lambert_geometry`).
 ///
 /// ```
 /// use glam::DVec3;
+/// use lambert_geometry::f64::ConvexPolygon;
 /// use lambert_light::analytic::{polygon_irradiance, Emission};
+/// use lambert_light::Receiver;
 /// // A unit square 1 above the receiver, facing down (vertices clockwise
 /// // seen from above): E = L ∫cos θ dω = 4x atan x ≈ 0.7522 with x = 0.5/√1.25
 /// // (four corner rectangles, Howell catalog C-11).
-/// let sq = [DVec3::new(-0.5, -0.5, 1.0), DVec3::new(-0.5, 0.5, 1.0),
-///           DVec3::new(0.5, 0.5, 1.0), DVec3::new(0.5, -0.5, 1.0)];
-/// let e = polygon_irradiance(1.0, DVec3::ZERO, DVec3::Z, &sq, Emission::OneSided).unwrap();
+/// let sq = ConvexPolygon::new(vec![DVec3::new(-0.5, -0.5, 1.0), DVec3::new(-0.5, 0.5, 1.0),
+///                                  DVec3::new(0.5, 0.5, 1.0), DVec3::new(0.5, -0.5, 1.0)])?;
+/// let up = Receiver::new(DVec3::ZERO, DVec3::Z)?;
+/// let e = polygon_irradiance(&sq, Emission::OneSided, 1.0, &up)?;
 /// let x = 0.5f64 / (1.0f64 + 0.25).sqrt();
 /// let corner = 2.0 * (x * (0.5f64 / (1.25f64).sqrt()).atan());
 /// assert!((e - 2.0 * corner).abs() < 1e-14);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn polygon_irradiance(
-    radiance: f64,
-    p: DVec3,
-    normal: DVec3,
-    vertices: &[DVec3],
+    polygon: &ConvexPolygon,
     emission: Emission,
+    radiance: f64,
+    receiver: &Receiver,
 ) -> Result<f64, AnalyticError> {
     finite("radiance", radiance)?;
-    let p = finite3("p", p)?;
-    let n = unit("normal", normal)?;
-    for &v in vertices {
-        finite3("vertices", v)?;
-    }
+    let (p, n) = (receiver.point, receiver.normal);
+    let vertices = polygon.vertices();
     // Exact power-of-two rescaling so that no product of two lengths
     // overflows or underflows (vertices 1e300 or 1e-300 in size).
     let k = super::disk::power_of_two_above(
@@ -143,7 +97,7 @@ pub fn polygon_irradiance(
     );
     let scaled_vertices: Vec<DVec3> = vertices.iter().map(|&v| v / k).collect();
     let p = p / k;
-    let front = polygon_normal(&scaled_vertices)?;
+    let front = polygon.normal();
     let side = front.dot(p - scaled_vertices[0]);
     if side == 0.0 || (emission == Emission::OneSided && side < 0.0) {
         return Ok(0.0);

@@ -4,6 +4,7 @@ use super::cap::cap_projected_solid_angle;
 use super::error::{finite, unit, AnalyticError};
 use super::scaled;
 use glam::DVec3;
+use lambert_geometry::GeometryError;
 use std::f64::consts::PI;
 
 /// A uniform sky of radiance L over the whole receiver hemisphere:
@@ -21,7 +22,7 @@ pub fn sky_irradiance(radiance: f64) -> f64 {
 
 /// [`sky_irradiance`] with its overflow reported: E = Lπ exceeds f64::MAX
 /// for L > 5.7e307, which is [`AnalyticError::Overflow`] (never ∞), and a
-/// non-finite L is [`AnalyticError::NotFinite`].
+/// non-finite L is [`AnalyticError::Input`].
 ///
 /// ```
 /// use lambert_light::analytic::{try_sky_irradiance, AnalyticError};
@@ -73,10 +74,11 @@ pub fn sky_cap_irradiance(
     let a = unit("axis", axis)?;
     finite("half_angle", half_angle)?;
     if !(half_angle > 0.0 && half_angle <= PI) {
-        return Err(AnalyticError::NotPositive {
-            field: "half_angle (must be in (0, π])",
+        return Err(AnalyticError::Input(GeometryError::OutOfRange {
+            field: "half_angle",
             value: half_angle,
-        });
+            range: "(0, π]",
+        }));
     }
     let (sg, cg) = half_angle.sin_cos();
     let cb = n.dot(a);

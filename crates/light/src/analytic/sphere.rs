@@ -2,12 +2,13 @@
 
 use super::cap::cap_over_sin2;
 use super::disk::power_of_two_above;
-use super::error::{finite, finite3, positive, unit, AnalyticError};
+use super::error::{finite, AnalyticError};
 use super::scaled;
-use glam::DVec3;
+use crate::receiver::Receiver;
+use lambert_geometry::f64::Sphere;
 
-/// A uniform sphere of radiance L (centre `center`, radius r) seen from a
-/// receiver at `p` with unit normal `n` (closed form).
+/// A uniform `sphere` (centre c, radius r) of radiance L seen from the
+/// `receiver` at p with unit normal n (closed form).
 ///
 /// Seen from outside, the sphere covers the cap of directions of axis
 /// a = (c − p)/d and angular radius α, sin α = r/d, so E = L P(β, α) with
@@ -21,30 +22,29 @@ use glam::DVec3;
 /// of |c − p|²), and E = L·(P/sin²α)·sin α·sin α is formed without
 /// intermediate underflow or overflow.
 ///
-/// Errors: non-finite input, a non-unit normal, r ≤ 0, `p` inside or on
-/// the sphere ([`AnalyticError::ReceiverInsideLight`]), or E beyond
+/// Errors: a non-finite radiance, p inside or on the sphere ([`AnalyticError::ReceiverInsideLight`]), or E beyond
 /// f64::MAX ([`AnalyticError::Overflow`]).
 ///
 /// ```
 /// use glam::DVec3;
-/// use lambert_light::analytic::sphere_irradiance;
+/// use lambert_geometry::f64::Sphere;
+/// use lambert_light::{analytic::sphere_irradiance, Receiver};
 /// use std::f64::consts::PI;
 /// // r = 1 at d = 2 overhead: sin²α = 1/4, E = Lπ/4.
-/// let e = sphere_irradiance(1.0, DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, 2.0), 1.0).unwrap();
+/// let sphere = Sphere::new(DVec3::new(0.0, 0.0, 2.0), 1.0)?;
+/// let up = Receiver::new(DVec3::ZERO, DVec3::Z)?;
+/// let e = sphere_irradiance(&sphere, 1.0, &up)?;
 /// assert!((e - PI / 4.0).abs() < 1e-15);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn sphere_irradiance(
+    sphere: &Sphere,
     radiance: f64,
-    p: DVec3,
-    normal: DVec3,
-    center: DVec3,
-    radius: f64,
+    receiver: &Receiver,
 ) -> Result<f64, AnalyticError> {
     finite("radiance", radiance)?;
-    let p = finite3("p", p)?;
-    let n = unit("normal", normal)?;
-    let c = finite3("center", center)?;
-    let r = positive("radius", radius)?;
+    let (p, n) = (receiver.point, receiver.normal);
+    let (c, r) = (sphere.center(), sphere.radius());
     // Exact power-of-two rescaling (c − p and |c − p|² may overflow or
     // underflow otherwise): a receiver on a sphere of radius 1e308 centred
     // 1e308 away is on it, not at an infinite distance.

@@ -124,3 +124,74 @@ pub(crate) fn cap_hemisphere_form(n: DVec3, a: DVec3, gamma: f64) -> f64 {
         })
         .sum()
 }
+
+/// The closed forms with the plain-vector arguments the tests are written
+/// in: each builds the shapes and the receiver (validated as every caller's
+/// are) and calls the public function.
+pub(crate) mod raw {
+    use super::super::{AnalyticError, BoundedIrradiance, Emission};
+    use crate::receiver::Receiver;
+    use glam::DVec3;
+    use lambert_geometry::f64::{unit_vector, ConvexPolygon, Disk, Frame, Sphere};
+    use lambert_geometry::validate;
+
+    fn receiver(p: DVec3, n: DVec3) -> Result<Receiver, AnalyticError> {
+        validate::finite3("p", p)?;
+        let normal = unit_vector("normal", n)?;
+        Ok(Receiver {
+            point: p,
+            normal,
+            frame: Frame::from_normal(normal),
+        })
+    }
+
+    pub(crate) fn sphere_irradiance(
+        radiance: f64,
+        p: DVec3,
+        n: DVec3,
+        center: DVec3,
+        radius: f64,
+    ) -> Result<f64, AnalyticError> {
+        let sphere = Sphere::new(center, radius)?;
+        super::super::sphere_irradiance(&sphere, radiance, &receiver(p, n)?)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn disk_irradiance_with_error_bound(
+        radiance: f64,
+        p: DVec3,
+        n: DVec3,
+        center: DVec3,
+        disk_normal: DVec3,
+        radius: f64,
+        emission: Emission,
+    ) -> Result<BoundedIrradiance, AnalyticError> {
+        let disk = Disk::new(center, disk_normal, radius)?;
+        super::super::disk_irradiance_with_error_bound(&disk, emission, radiance, &receiver(p, n)?)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn disk_irradiance(
+        radiance: f64,
+        p: DVec3,
+        n: DVec3,
+        center: DVec3,
+        disk_normal: DVec3,
+        radius: f64,
+        emission: Emission,
+    ) -> Result<f64, AnalyticError> {
+        let disk = Disk::new(center, disk_normal, radius)?;
+        super::super::disk_irradiance(&disk, emission, radiance, &receiver(p, n)?)
+    }
+
+    pub(crate) fn polygon_irradiance(
+        radiance: f64,
+        p: DVec3,
+        n: DVec3,
+        vertices: &[DVec3],
+        emission: Emission,
+    ) -> Result<f64, AnalyticError> {
+        let polygon = ConvexPolygon::new(vertices.to_vec())?;
+        super::super::polygon_irradiance(&polygon, emission, radiance, &receiver(p, n)?)
+    }
+}

@@ -6,6 +6,7 @@
 //! relative even across the clipping kink), "formula" errors a few ulps
 //! times the conditioning stated in the module docs.
 
+use super::test_support::raw;
 use super::test_support::*;
 use super::*;
 use glam::{DMat3, DQuat, DVec3};
@@ -111,7 +112,7 @@ fn sphere_against_area_integral() {
             let n = DVec3::Z;
             // Rotate the geometry so that the sphere is at angle β from n:
             // the centre is along −(p − c) from p.
-            let e = sphere_irradiance(1.0, p, n, c, r).unwrap();
+            let e = raw::sphere_irradiance(1.0, p, n, c, r).unwrap();
             let reference = cap_hemisphere_form(n, (c - p) / d, (r / d).asin());
             if reference == 0.0 {
                 assert_eq!(e, 0.0);
@@ -133,7 +134,7 @@ fn sphere_equals_cap() {
         let (d, r) = (2.0f64, 1.2f64);
         let p = DVec3::ZERO;
         let n = tilted(beta);
-        let e = sphere_irradiance(1.0, p, n, DVec3::Z * d, r).unwrap();
+        let e = raw::sphere_irradiance(1.0, p, n, DVec3::Z * d, r).unwrap();
         let cap = sky_cap_irradiance(1.0, n, DVec3::Z, (r / d).asin()).unwrap();
         assert!(rel(e, cap) < 1e-15, "β {beta}: {e} vs {cap}");
     }
@@ -146,7 +147,7 @@ fn sphere_equals_cap() {
 fn sphere_far_and_tiny_is_point_light() {
     for &(d, r) in &[(1e6, 1.0), (1.0, 1e-8)] {
         let n = tilted(0.7);
-        let e = sphere_irradiance(2.0, DVec3::ZERO, n, DVec3::Z * d, r).unwrap();
+        let e = raw::sphere_irradiance(2.0, DVec3::ZERO, n, DVec3::Z * d, r).unwrap();
         let point = point_light_irradiance(2.0 * PI * r * r, DVec3::ZERO, n, DVec3::Z * d).unwrap();
         assert!(rel(e, point) < 1e-15, "d {d} r {r}: {e} vs {point}");
     }
@@ -158,10 +159,10 @@ fn sphere_far_and_tiny_is_point_light() {
 #[test]
 fn sphere_almost_touching() {
     let (r, d) = (1.0, 1.0 + 1e-10);
-    let e = sphere_irradiance(1.0, DVec3::ZERO, DVec3::Z, DVec3::Z * d, r).unwrap();
+    let e = raw::sphere_irradiance(1.0, DVec3::ZERO, DVec3::Z, DVec3::Z * d, r).unwrap();
     assert!(rel(e, PI * (r / d) * (r / d)) < 1e-15);
     let n = tilted(1.0);
-    let e = sphere_irradiance(1.0, DVec3::ZERO, n, DVec3::Z * d, r).unwrap();
+    let e = raw::sphere_irradiance(1.0, DVec3::ZERO, n, DVec3::Z * d, r).unwrap();
     let reference = cap_hemisphere_form(n, DVec3::Z, (r / d).asin());
     assert!(rel(e, reference) < 5e-13, "{e} vs {reference}");
 }
@@ -208,15 +209,15 @@ fn disk_tilted_against_area_integral() {
         for &beta in &[0.0, 0.5, 1.1, 1.45] {
             let n = DQuat::from_rotation_z(ny) * tilted(beta);
             let p = DVec3::ZERO;
-            let two = disk_irradiance(1.0, p, n, c, m, 0.8, Emission::TwoSided).unwrap();
+            let two = raw::disk_irradiance(1.0, p, n, c, m, 0.8, Emission::TwoSided).unwrap();
             let reference = disk_area_form(p, n, c, m, 0.8);
             assert!(
                 rel(two, reference) < 1e-12,
                 "tilt {tilt} β {beta}: {two} vs {reference}"
             );
             // Two-sided = front + back (one of them 0).
-            let front = disk_irradiance(1.0, p, n, c, m, 0.8, Emission::OneSided).unwrap();
-            let back = disk_irradiance(1.0, p, n, c, -m, 0.8, Emission::OneSided).unwrap();
+            let front = raw::disk_irradiance(1.0, p, n, c, m, 0.8, Emission::OneSided).unwrap();
+            let back = raw::disk_irradiance(1.0, p, n, c, -m, 0.8, Emission::OneSided).unwrap();
             assert_eq!(front + back, two);
             assert_eq!(front.min(back), 0.0);
         }
@@ -229,7 +230,7 @@ fn disk_tilted_against_area_integral() {
 #[test]
 fn disk_far_is_point_light() {
     let d = 1e6;
-    let e = disk_irradiance(
+    let e = raw::disk_irradiance(
         1.0,
         DVec3::ZERO,
         DVec3::Z,
@@ -243,7 +244,7 @@ fn disk_far_is_point_light() {
     let dir = DVec3::new(0.6, 0.0, 0.8);
     let m = -DVec3::new(0.0, 0.6, 0.8);
     let n = tilted(0.3);
-    let e = disk_irradiance(1.0, DVec3::ZERO, n, dir * d, m, 1.0, Emission::OneSided).unwrap();
+    let e = raw::disk_irradiance(1.0, DVec3::ZERO, n, dir * d, m, 1.0, Emission::OneSided).unwrap();
     let point = PI * n.dot(dir) * (-m).dot(dir) / (d * d);
     assert!(rel(e, point) < 5e-12, "{e} vs {point}: {}", rel(e, point));
 }
@@ -255,7 +256,7 @@ fn disk_far_is_point_light() {
 #[test]
 fn disk_almost_touching() {
     let h = 1e-9;
-    let e = disk_irradiance(
+    let e = raw::disk_irradiance(
         1.0,
         DVec3::new(0.3, 0.0, -h),
         DVec3::Z,
@@ -268,7 +269,7 @@ fn disk_almost_touching() {
     assert!(rel(e, disk_parallel_offset_irradiance(1.0, h, 0.3, 1.0)) < 1e-15);
     assert!(rel(e, PI) < 1e-15);
     let n = tilted(0.8);
-    let e = disk_irradiance(
+    let e = raw::disk_irradiance(
         1.0,
         DVec3::new(0.3, 0.0, -h),
         n,
@@ -348,16 +349,16 @@ fn polygon_against_area_integral() {
         let center = DVec3::new(0.3, 0.2, 1.0);
         let sq = square(center, 0.6, frame);
         let n = tilted(beta);
-        let e = polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::TwoSided).unwrap();
+        let e = raw::polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::TwoSided).unwrap();
         let reference = square_area_form(DVec3::ZERO, n, center, 0.6, frame);
         assert!(
             rel(e, reference) < 1e-12,
             "tilt {tilt} β {beta}: {e} vs {reference}"
         );
-        let front = polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::OneSided).unwrap();
+        let front = raw::polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::OneSided).unwrap();
         let mut rev = sq.clone();
         rev.reverse();
-        let back = polygon_irradiance(1.0, DVec3::ZERO, n, &rev, Emission::OneSided).unwrap();
+        let back = raw::polygon_irradiance(1.0, DVec3::ZERO, n, &rev, Emission::OneSided).unwrap();
         assert_eq!(front.min(back), 0.0);
         assert_eq!(front.max(back), e);
     }
@@ -371,8 +372,8 @@ fn rectangle_is_two_triangles() {
     let sq = square(DVec3::new(0.1, 0.4, 0.8), 0.5, frame);
     for &beta in &[0.0, 0.8, 1.3] {
         let n = tilted(beta);
-        let whole = polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::OneSided).unwrap();
-        let t1 = polygon_irradiance(
+        let whole = raw::polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::OneSided).unwrap();
+        let t1 = raw::polygon_irradiance(
             1.0,
             DVec3::ZERO,
             n,
@@ -380,7 +381,7 @@ fn rectangle_is_two_triangles() {
             Emission::OneSided,
         )
         .unwrap();
-        let t2 = polygon_irradiance(
+        let t2 = raw::polygon_irradiance(
             1.0,
             DVec3::ZERO,
             n,
@@ -405,15 +406,16 @@ fn polygon_4096_approximates_disk() {
             DVec3::new(t.cos(), -t.sin(), 1.5)
         })
         .collect();
-    let e = polygon_irradiance(1.0, DVec3::ZERO, DVec3::Z, &verts, Emission::OneSided).unwrap();
+    let e =
+        raw::polygon_irradiance(1.0, DVec3::ZERO, DVec3::Z, &verts, Emission::OneSided).unwrap();
     let inner = disk_coaxial_irradiance(1.0, 1.5, (PI / nv as f64).cos());
     let outer = disk_coaxial_irradiance(1.0, 1.5, 1.0);
     assert!(inner <= e && e <= outer, "{inner} {e} {outer}");
     let bound = 2.0 * (PI / nv as f64).powi(2);
     for &beta in &[0.6, 1.2, 1.5] {
         let n = tilted(beta);
-        let ep = polygon_irradiance(1.0, DVec3::ZERO, n, &verts, Emission::OneSided).unwrap();
-        let ed = disk_irradiance(
+        let ep = raw::polygon_irradiance(1.0, DVec3::ZERO, n, &verts, Emission::OneSided).unwrap();
+        let ed = raw::disk_irradiance(
             1.0,
             DVec3::ZERO,
             n,
@@ -436,7 +438,7 @@ fn polygon_far_is_point_light() {
     let frame = DMat3::from_quat(DQuat::from_rotation_x(PI));
     let sq = square(DVec3::Z * d, 0.5, frame);
     let n = tilted(0.4);
-    let e = polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::OneSided).unwrap();
+    let e = raw::polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::OneSided).unwrap();
     let point = n.z / (d * d);
     assert!(rel(e, point) < 1e-9, "{}", rel(e, point));
 }
@@ -452,17 +454,18 @@ fn rigid_motion_invariance() {
     let (p, n) = (DVec3::ZERO, tilted(1.2));
     let c = DVec3::new(0.3, 0.1, 1.0);
     let m = -tilted(0.9);
-    let sphere0 = sphere_irradiance(1.0, p, n, c, 0.7).unwrap();
-    let sphere1 = sphere_irradiance(1.0, mv(p), q * n, mv(c), 0.7).unwrap();
+    let sphere0 = raw::sphere_irradiance(1.0, p, n, c, 0.7).unwrap();
+    let sphere1 = raw::sphere_irradiance(1.0, mv(p), q * n, mv(c), 0.7).unwrap();
     assert!(rel(sphere1, sphere0) < 1e-13);
-    let disk0 = disk_irradiance(1.0, p, n, c, m, 0.8, Emission::TwoSided).unwrap();
-    let disk1 = disk_irradiance(1.0, mv(p), q * n, mv(c), q * m, 0.8, Emission::TwoSided).unwrap();
+    let disk0 = raw::disk_irradiance(1.0, p, n, c, m, 0.8, Emission::TwoSided).unwrap();
+    let disk1 =
+        raw::disk_irradiance(1.0, mv(p), q * n, mv(c), q * m, 0.8, Emission::TwoSided).unwrap();
     assert!(rel(disk1, disk0) < 1e-13);
     let frame = DMat3::from_quat(DQuat::from_rotation_x(PI + 0.5));
     let sq = square(c, 0.6, frame);
     let sq1: Vec<DVec3> = sq.iter().map(|&v| mv(v)).collect();
-    let poly0 = polygon_irradiance(1.0, p, n, &sq, Emission::TwoSided).unwrap();
-    let poly1 = polygon_irradiance(1.0, mv(p), q * n, &sq1, Emission::TwoSided).unwrap();
+    let poly0 = raw::polygon_irradiance(1.0, p, n, &sq, Emission::TwoSided).unwrap();
+    let poly1 = raw::polygon_irradiance(1.0, mv(p), q * n, &sq1, Emission::TwoSided).unwrap();
     assert!(rel(poly1, poly0) < 1e-13);
     let cap0 = sky_cap_irradiance(1.0, n, tilted(0.2), 1.0).unwrap();
     let cap1 = sky_cap_irradiance(1.0, q * n, q * tilted(0.2), 1.0).unwrap();
@@ -487,19 +490,24 @@ fn point_and_directional() {
 
 #[test]
 fn bad_input_is_an_error() {
+    use lambert_geometry::GeometryError;
     assert!(matches!(
-        sphere_irradiance(1.0, DVec3::ZERO, DVec3::Z, DVec3::Z * 0.5, 1.0),
+        raw::sphere_irradiance(1.0, DVec3::ZERO, DVec3::Z, DVec3::Z * 0.5, 1.0),
         Err(AnalyticError::ReceiverInsideLight { .. })
     ));
+    // A normal of any non-zero length is normalised, as everywhere.
+    assert_eq!(
+        raw::sphere_irradiance(1.0, DVec3::ZERO, DVec3::Z * 2.0, DVec3::Z * 5.0, 1.0),
+        raw::sphere_irradiance(1.0, DVec3::ZERO, DVec3::Z, DVec3::Z * 5.0, 1.0)
+    );
     assert!(matches!(
-        sphere_irradiance(1.0, DVec3::ZERO, DVec3::Z * 2.0, DVec3::Z * 5.0, 1.0),
-        Err(AnalyticError::NotUnit {
-            field: "normal",
-            ..
-        })
+        raw::sphere_irradiance(1.0, DVec3::ZERO, DVec3::ZERO, DVec3::Z * 5.0, 1.0),
+        Err(AnalyticError::Input(GeometryError::ZeroVector {
+            field: "normal"
+        }))
     ));
     assert!(matches!(
-        disk_irradiance(
+        raw::disk_irradiance(
             1.0,
             DVec3::ZERO,
             DVec3::Z,
@@ -508,15 +516,18 @@ fn bad_input_is_an_error() {
             -1.0,
             Emission::OneSided
         ),
-        Err(AnalyticError::NotPositive {
+        Err(AnalyticError::Input(GeometryError::NotPositive {
             field: "radius",
             ..
-        })
+        }))
     ));
     let bent = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.1), DVec3::Y];
     assert!(matches!(
-        polygon_irradiance(1.0, DVec3::Z, DVec3::Z, &bent, Emission::OneSided),
-        Err(AnalyticError::BadPolygon { .. })
+        raw::polygon_irradiance(1.0, DVec3::Z, DVec3::Z, &bent, Emission::OneSided),
+        Err(AnalyticError::Input(GeometryError::Shape {
+            field: "vertices",
+            ..
+        }))
     ));
     let concave = [
         DVec3::ZERO,
@@ -525,12 +536,22 @@ fn bad_input_is_an_error() {
         DVec3::new(1.0, 2.0, 0.0),
     ];
     assert!(matches!(
-        polygon_irradiance(1.0, DVec3::Z, DVec3::Z, &concave, Emission::OneSided),
-        Err(AnalyticError::BadPolygon { .. })
+        raw::polygon_irradiance(1.0, DVec3::Z, DVec3::Z, &concave, Emission::OneSided),
+        Err(AnalyticError::Input(GeometryError::Shape {
+            field: "vertices",
+            ..
+        }))
     ));
     assert!(matches!(
         point_light_irradiance(f64::NAN, DVec3::ZERO, DVec3::Z, DVec3::Z),
-        Err(AnalyticError::NotFinite { .. })
+        Err(AnalyticError::Input(GeometryError::NotFinite { .. }))
+    ));
+    assert!(matches!(
+        sky_cap_irradiance(1.0, DVec3::Z, DVec3::Z, 4.0),
+        Err(AnalyticError::Input(GeometryError::OutOfRange {
+            field: "half_angle",
+            ..
+        }))
     ));
 }
 

@@ -167,29 +167,17 @@ impl Emitter {
                 Emission::OneSided
             }
         };
-        let (p, n) = (receiver.point, receiver.normal);
+        let n = receiver.normal;
         match self {
             Emitter::Sky(s) => try_sky_irradiance(s.radiance),
             Emitter::SkyCap(c) => sky_cap_irradiance(c.radiance, n, c.axis, c.half_angle),
-            Emitter::Sphere(s) => {
-                sphere_irradiance(s.radiance, p, n, s.sphere.center(), s.sphere.radius())
+            Emitter::Sphere(s) => sphere_irradiance(&s.sphere, s.radiance, receiver),
+            Emitter::Disk(d) => {
+                disk_irradiance(&d.disk, emission(d.two_sided), d.radiance, receiver)
             }
-            Emitter::Disk(d) => disk_irradiance(
-                d.radiance,
-                p,
-                n,
-                d.disk.center(),
-                d.disk.normal(),
-                d.disk.radius(),
-                emission(d.two_sided),
-            ),
-            Emitter::Polygon(q) => polygon_irradiance(
-                q.radiance,
-                p,
-                n,
-                q.polygon.vertices(),
-                emission(q.two_sided),
-            ),
+            Emitter::Polygon(q) => {
+                polygon_irradiance(&q.polygon, emission(q.two_sided), q.radiance, receiver)
+            }
             Emitter::Point(_) | Emitter::Directional(_) => {
                 let e = self.delta_irradiance(receiver);
                 if e.is_finite() {
