@@ -109,7 +109,8 @@ pub fn analytic() -> Call {
 
 /// `lambert estimate {scene} --json` with `strategy` and a random
 /// sequence (independent 70 %, stratified and Sobol 15 % each), a small
-/// sample count (the sequence's minimum up to 256) and a random seed.
+/// sample count (the sequence's minimum up to 256), a random seed, and two
+/// threads one time in five.
 pub fn estimate<R: Rng>(rng: &mut R, strategy: &str) -> Call {
     let sequence = match rng.random_range(0..20) {
         0..=13 => "independent",
@@ -119,7 +120,7 @@ pub fn estimate<R: Rng>(rng: &mut R, strategy: &str) -> Call {
     let minimum = if sequence == "independent" { 2 } else { 32 };
     let samples = [minimum, 64, 64, 100, 256][rng.random_range(0..5)];
     let seed = rng.random_range(0..1000u32);
-    let args = [
+    let mut args: Vec<String> = [
         "estimate",
         "{scene}",
         "--json",
@@ -131,10 +132,15 @@ pub fn estimate<R: Rng>(rng: &mut R, strategy: &str) -> Call {
         &samples.to_string(),
         "--seed",
         &seed.to_string(),
-    ];
+    ]
+    .map(str::to_owned)
+    .to_vec();
+    if rng.random_bool(0.2) {
+        args.extend(["--threads".to_owned(), "2".to_owned()]);
+    }
     Call {
         command: Command::Estimate,
-        args: args.map(str::to_owned).to_vec(),
+        args,
     }
 }
 

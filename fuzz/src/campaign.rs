@@ -81,18 +81,26 @@ pub struct CallResult {
     /// failure of this contract (the numbers are finite), but dishonest
     /// uncertainty worth counting.
     pub exact_but_wrong: bool,
+    /// An answered estimate with |z| > 10 against the closed form (a wrong
+    /// closed form, a biased estimator or a dishonest standard error).
+    pub far_from_closed_form: bool,
 }
 
-/// Whether an answered estimate claims `std_error` 0 with `|rel_error|`
-/// above 1e-6.
-fn exact_but_wrong(call: &Call, verdict: &Verdict, stdout: &str) -> bool {
+/// What an answered estimate says about its own accuracy, beyond this
+/// contract: whether it claims `std_error` 0 with `|rel_error|` above 1e-6
+/// (exact but wrong), and whether `|z|` exceeds 10 (the estimate and the
+/// closed form disagree far beyond the reported error).
+fn accuracy(call: &Call, verdict: &Verdict, stdout: &str) -> (bool, bool) {
     if call.command != calls::Command::Estimate || *verdict != Verdict::Answered {
-        return false;
+        return (false, false);
     }
     let Ok(v) = serde_json::from_str::<serde_json::Value>(stdout) else {
-        return false;
+        return (false, false);
     };
-    v["std_error"].as_f64() == Some(0.0) && v["rel_error"].as_f64().is_some_and(|r| r.abs() > 1e-6)
+    let exact_but_wrong = v["std_error"].as_f64() == Some(0.0)
+        && v["rel_error"].as_f64().is_some_and(|r| r.abs() > 1e-6);
+    let far = v["z"].as_f64().is_some_and(|z| z.abs() > 10.0);
+    (exact_but_wrong, far)
 }
 
 /// The verdicts on a case's calls.
@@ -198,6 +206,10 @@ pub struct Summary {
     /// Answered estimates with standard error 0 that differ from the
     /// closed form ([`CallResult::exact_but_wrong`]).
     pub exact_but_wrong: u64,
+    /// Answered estimates with |z| > 10 ([`CallResult::far_from_closed_form`]).
+    pub far_from_closed_form: u64,
+    /// The first cases of each observation, for a look.
+    pub observed_cases: BTreeMap<&'static str, Vec<u64>>,
     /// Wall time, seconds.
     pub seconds: f64,
 }
@@ -304,12 +316,11 @@ pub fn campaign(settings: &Settings) -> Result<Report, String> {
                                 let message = (verdict == Verdict::Refused).then(|| {
                                     outcome.stderr.lines().next().unwrap_or("").to_owned()
                                 });
+                                let (exact_but_wrong, far_from_closed_form) =
+                                    accuracy(&call, &verdict, &outcome.stdout);
                                 CallResult {
-                                    exact_but_wrong: exact_but_wrong(
-                                        &call,
-                                        &verdict,
-                                        &outcome.stdout,
-                                    ),
+                                    exact_but_wrong,
+                                    far_from_closed_form,
                                     call,
                                     verdict,
                                     seconds: outcome.seconds,
@@ -352,6 +363,16 @@ pub fn campaign(settings: &Settings) -> Result<Report, String> {
         for c in &r.calls {
             summary.calls += 1;
             summary.exact_but_wrong += u64::from(c.exact_but_wrong);
+            summary.far_from_closed_form += u64::from(c.far_from_closed_form);
+            for (name, seen) in [
+                ("exact_but_wrong", c.exact_but_wrong),
+                ("abs_z_above_10", c.far_from_closed_form),
+            ] {
+                let cases = summary.observed_cases.entry(name).or_default();
+                if seen && cases.len() < 50 && cases.last() != Some(&r.case.index) {
+                    cases.push(r.case.index);
+                }
+            }
             match &c.verdict {
                 Verdict::Answered => summary.answers += 1,
                 Verdict::Refused => {
@@ -482,7 +503,11 @@ pub fn to_json(settings: &Settings, report: &Report) -> serde_json::Value {
         "new_failures": s.new_failures(),
         "seconds": s.seconds,
         "clear_error_messages": s.refusal_messages,
-        "exact_but_wrong_estimates": s.exact_but_wrong,
+        "observations": {
+            "exact_but_wrong_estimates": s.exact_but_wrong,
+            "estimates_with_abs_z_above_10": s.far_from_closed_form,
+            "first_cases": s.observed_cases,
+        },
         "signatures": groups.iter().map(|(k, (n, first))| json!({"signature": k, "count": n, "first_case": first})).collect::<Vec<_>>(),
         "failing": failing,
     })

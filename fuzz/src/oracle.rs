@@ -606,6 +606,35 @@ mod tests {
     }
 
     #[test]
+    fn render_contract() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("image.exr");
+        let call = Call::from_template("render {scene} --out {out} --json").unwrap();
+        let ctx = Context {
+            out_file: Some(&out),
+            ..Context::default()
+        };
+        let summary = outcome(0, "{\"seconds\":0.5,\"rays\":16}\n", "");
+        assert_eq!(
+            class(judge(&call, &summary, &ctx)),
+            Some(Class::BadJson),
+            "no file"
+        );
+        std::fs::write(&out, b"exr").unwrap();
+        assert_eq!(judge(&call, &summary, &ctx), Verdict::Answered);
+        let null = outcome(0, "{\"seconds\":0.5,\"error\":{\"mean\":null}}\n", "");
+        assert_eq!(class(judge(&call, &null, &ctx)), Some(Class::NonFinite));
+        let refused = outcome(2, "", "error: s.toml: emitters[0].radius: bad\n");
+        assert_eq!(
+            class(judge(&call, &refused, &ctx)),
+            Some(Class::HalfWritten),
+            "file left"
+        );
+        std::fs::remove_file(&out).unwrap();
+        assert_eq!(judge(&call, &refused, &ctx), Verdict::Refused);
+    }
+
+    #[test]
     fn estimate_contract() {
         let call = Call::from_template("estimate {scene} --json --samples 64").unwrap();
         let line = |mean: &str, se: &str, analytic: &str, rel: &str, z: &str| {
