@@ -8,7 +8,9 @@
 
 use rand::Rng;
 
-/// The strategies of `lambert estimate --strategy`.
+/// The strategies of `lambert estimate --strategy`, as a user's script
+/// names them (the fuzzer knows the command line's vocabulary, not the
+/// library's types, so that it tests what a user sees).
 pub const STRATEGIES: [&str; 7] = [
     "auto",
     "uniform-hemisphere",

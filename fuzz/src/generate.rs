@@ -17,7 +17,9 @@ use std::f64::consts::PI;
 use crate::numbers::{coordinate, invalid_magnitude, log_uniform, magnitude, non_finite, signed};
 use crate::scene::{SceneFile, Table, Value};
 
-/// The emitter kinds of the scene format.
+/// The emitter kinds of the scene format, as a file spells them (kept
+/// here, not taken from the library, so that the fuzzer tests the format a
+/// user writes).
 pub const KINDS: [&str; 7] = [
     "sky",
     "sky_cap",
