@@ -6,6 +6,8 @@ use clap::Args;
 use lambert_light::Scene;
 use serde_json::json;
 
+use super::finite;
+
 /// Options of `lambert analytic`.
 #[derive(Args, Debug, Clone)]
 pub struct AnalyticOptions {
@@ -24,25 +26,35 @@ pub struct ClosedForm {
     pub per_emitter: Vec<f64>,
 }
 
-/// The closed form of every emitter, or `None` if one has none.
-pub fn closed_form(scene: &Scene) -> Option<ClosedForm> {
-    let per_emitter: Option<Vec<f64>> = scene
-        .emitters
-        .iter()
-        .map(|e| e.closed_form_irradiance(&scene.receiver))
-        .collect();
-    let per_emitter = per_emitter?;
-    Some(ClosedForm {
-        total: per_emitter.iter().sum(),
+/// The closed form of every emitter, or `Ok(None)` if one has none.
+///
+/// # Errors
+/// When an emitter's irradiance or the total is not a finite f64 (an
+/// overflow names the emitter and its strength, [`super::finite`]).
+pub fn closed_form(scene: &Scene) -> Result<Option<ClosedForm>, String> {
+    let mut per_emitter = Vec::with_capacity(scene.emitters.len());
+    let mut complete = true;
+    for (i, e) in scene.emitters.iter().enumerate() {
+        match e.closed_form_irradiance(&scene.receiver) {
+            Some(v) => per_emitter.push(finite::emitter_irradiance(i, e, v)?),
+            None => complete = false,
+        }
+    }
+    if !complete {
+        return Ok(None);
+    }
+    Ok(Some(ClosedForm {
+        total: finite::total(&scene.emitters, &per_emitter)?,
         per_emitter,
-    })
+    }))
 }
 
 /// Runs the command.
 pub fn run(options: &AnalyticOptions) -> Result<(), String> {
     let scene =
         Scene::load(&options.scene).map_err(|e| format!("{}: {e}", options.scene.display()))?;
-    let Some(c) = closed_form(&scene) else {
+    let closed = closed_form(&scene).map_err(|e| format!("{}: {e}", options.scene.display()))?;
+    let Some(c) = closed else {
         return Err(format!(
             "{}: this scene has no closed form (an emitter without one: {})",
             options.scene.display(),
