@@ -5,7 +5,6 @@ use glam::DVec3;
 use lambert_geometry::f64::{unit_vector, Frame};
 use lambert_geometry::{validate, GeometryError};
 
-
 /// A point receiving irradiance E = ∫_{n·ω>0} L(ω) (n·ω) dω, in W/m².
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Receiver {

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use lambert_light::analytic::AnalyticError;
 use lambert_light::Scene;
 use serde_json::json;
 
@@ -26,24 +27,29 @@ pub struct ClosedForm {
     pub per_emitter: Vec<f64>,
 }
 
-/// The closed form of every emitter, or `Ok(None)` if one has none.
+/// The closed form of every emitter, or `Ok(None)` with the reason when
+/// one could not be resolved within its work bound (a disk cut by the
+/// receiver's plane whose rim quadrature did not reach its error target).
 ///
 /// # Errors
-/// When an emitter's irradiance or the total is not a finite f64 (an
-/// overflow names the emitter and its strength, [`super::finite`]).
-pub fn closed_form(scene: &Scene) -> Result<Option<ClosedForm>, String> {
+/// When an emitter's irradiance or the total is beyond the f64 range (the
+/// message names the emitter and its strength, [`super::finite`]), or the
+/// closed form rejects the geometry.
+pub fn closed_form(scene: &Scene) -> Result<Result<ClosedForm, String>, String> {
     let mut per_emitter = Vec::with_capacity(scene.emitters.len());
-    let mut complete = true;
     for (i, e) in scene.emitters.iter().enumerate() {
-        match e.closed_form_irradiance(&scene.receiver) {
-            Some(v) => per_emitter.push(finite::emitter_irradiance(i, e, v)?),
-            None => complete = false,
+        match e.try_closed_form_irradiance(&scene.receiver) {
+            Ok(v) => per_emitter.push(finite::emitter_irradiance(i, e, v)?),
+            Err(AnalyticError::Overflow { .. }) => {
+                finite::emitter_irradiance(i, e, f64::INFINITY)?;
+            }
+            Err(unresolved @ AnalyticError::Unresolved { .. }) => {
+                return Ok(Err(format!("emitters[{i}] ({}): {unresolved}", e.kind())));
+            }
+            Err(other) => return Err(format!("emitters[{i}] ({}): {other}", e.kind())),
         }
     }
-    if !complete {
-        return Ok(None);
-    }
-    Ok(Some(ClosedForm {
+    Ok(Ok(ClosedForm {
         total: finite::total(&scene.emitters, &per_emitter)?,
         per_emitter,
     }))
@@ -53,21 +59,9 @@ pub fn closed_form(scene: &Scene) -> Result<Option<ClosedForm>, String> {
 pub fn run(options: &AnalyticOptions) -> Result<(), String> {
     let scene =
         Scene::load(&options.scene).map_err(|e| format!("{}: {e}", options.scene.display()))?;
-    let closed = closed_form(&scene).map_err(|e| format!("{}: {e}", options.scene.display()))?;
-    let Some(c) = closed else {
-        return Err(format!(
-            "{}: this scene has no closed form (an emitter without one: {})",
-            options.scene.display(),
-            scene
-                .emitters
-                .iter()
-                .enumerate()
-                .filter(|(_, e)| e.closed_form_irradiance(&scene.receiver).is_none())
-                .map(|(i, e)| format!("emitters[{i}] ({})", e.kind()))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ));
-    };
+    let c = closed_form(&scene)
+        .map_err(|e| format!("{}: {e}", options.scene.display()))?
+        .map_err(|e| format!("{}: {e}", options.scene.display()))?;
     if options.json {
         println!(
             "{}",

@@ -64,6 +64,7 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
     // before sampling, naming the emitter.
     let analytic = closed_form(&scene)
         .map_err(|e| format!("{}: {e}", options.scene.display()))?
+        .ok()
         .map(|c| c.total);
     let report = checked_estimate(&scene, &config, &options.scene.display().to_string())?;
     let rel_error = match analytic {
@@ -166,7 +167,7 @@ fn non_finite_quantity(r: &EstimateReport) -> Option<String> {
 /// A message naming the emitters whose estimate alone is not finite (or,
 /// if each alone is finite, all the sampled emitters, whose sum is not).
 fn blame(scene: &Scene, config: &EstimateConfig, cause: &str) -> String {
-    let alone = |e: &lambert_estimator::Emitter| {
+    let alone = |e: &lambert_light::Emitter| {
         let single = Scene::new(scene.receiver, vec![e.clone()]).ok()?;
         estimate(&single, config)
             .ok()

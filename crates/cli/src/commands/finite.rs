@@ -5,7 +5,7 @@
 //! code 2 — never a JSON `null` with exit code 0. A NaN where the inputs
 //! were valid is lambert's fault, and the message says so.
 
-use lambert_estimator::Emitter;
+use lambert_light::Emitter;
 
 /// The largest finite f64, as the messages quote it.
 const F64_MAX: &str = "≈ 1.8e308";
@@ -94,7 +94,7 @@ pub fn ratio(key: &str, what: &str, numerator: f64, denominator: f64) -> Result<
 mod tests {
     use super::*;
     use glam::DVec3;
-    use lambert_estimator::emitter::{PointLight, Sky};
+    use lambert_light::emitter::{PointLight, Sky};
 
     #[test]
     fn overflow_names_the_emitter_and_the_quantity() {

@@ -90,7 +90,6 @@ pub struct Estimate {
     m2: NeumaierSum,
 }
 
-
 /// The compensated sum `s + c` divided by `n`, as `hi + lo` (module docs).
 #[inline]
 fn split_mean(sum: &NeumaierSum, n: u64) -> (f64, f64) {
