@@ -36,6 +36,8 @@ pub mod independent;
 pub mod sobol;
 mod sobol_table;
 pub mod stratified;
+#[cfg(test)]
+mod value_stability;
 
 pub use independent::Independent;
 pub use sobol::{Scramble, Sobol, SobolLayout};
