@@ -164,3 +164,69 @@ fn digest_sees_one_changed_bit() {
     moved.swap(3, 4);
     assert_ne!(digest(moved), before);
 }
+
+/// Batch fills give the cursor's values to the bit: every batch length
+/// regime (a single point, below and above the table threshold, several
+/// blocks with a partial one), requests in and past the first 256 Sobol
+/// dimensions, a batch crossing a block of `2^32` Sobol indices, and one
+/// wrapping past `2^64 − 1`.
+fn check_batch_matches_cursor<S: SampleSequence>(seq: &S, name: &str) {
+    let ranges: [(u64, usize); 7] = [
+        (0, 1),
+        (5, 63),
+        (5, 64),
+        (3_120_000, 4096 + 37),
+        ((1 << 32) - 300, 700),
+        (u64::MAX - 10, 30),
+        (12_345, 1000),
+    ];
+    let mut cursor = seq.clone();
+    for (first, len) in ranges {
+        for request in [0u64, 1, 2, 127, 128, 130] {
+            let mut batch = vec![glam::DVec2::ZERO; len];
+            let mut batch_f32 = vec![glam::Vec2::ZERO; len];
+            seq.fill_2d(first, request, &mut batch);
+            seq.fill_2d_f32(first, request, &mut batch_f32);
+            for k in 0..len {
+                let i = first.wrapping_add(k as u64);
+                cursor.start_sample(i);
+                for _ in 0..request {
+                    cursor.next_2d();
+                }
+                let mut again = cursor.clone();
+                let u = cursor.next_2d();
+                let v = again.next_2d_f32();
+                assert_eq!(
+                    (u.x.to_bits(), u.y.to_bits()),
+                    (batch[k].x.to_bits(), batch[k].y.to_bits()),
+                    "{name}: index {i} request {request}"
+                );
+                assert_eq!(
+                    (v.x.to_bits(), v.y.to_bits()),
+                    (batch_f32[k].x.to_bits(), batch_f32[k].y.to_bits()),
+                    "{name} f32: index {i} request {request}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn sobol_batches_match_the_cursor() {
+    for (name, seq) in sobol_configs() {
+        check_batch_matches_cursor(&seq, name);
+    }
+}
+
+#[test]
+fn stratified_batches_match_the_cursor() {
+    for (n, seed) in STRATIFIED_CONFIGS {
+        let seq = Stratified::new(n, seed).unwrap();
+        check_batch_matches_cursor(&seq, &format!("stratified N {n}"));
+    }
+}
+
+#[test]
+fn independent_batches_match_the_cursor() {
+    check_batch_matches_cursor(&super::Independent::new(4), "independent");
+}
