@@ -32,7 +32,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use super::{clamp_unit, mix64, u64_to_f64};
+use super::{clamp_unit, hash2, mix64, u64_to_f64};
 
 /// Samples per block of the structure-of-arrays loops.
 pub(super) const BLOCK: usize = 256;
@@ -188,9 +188,6 @@ pub(super) struct GridKeys {
     sigma: Vec<PermuteKeys>,
     tau: Vec<PermuteKeys>,
 }
-
-/// The splitmix64 hash of two words, [`super::hash2`].
-use super::hash2;
 
 impl GridKeys {
     /// `σ` keys `hash2(sigma_key, c)` for `c < nx`, `τ` keys
@@ -361,4 +358,82 @@ pub(super) fn fill_pass(
 #[inline(always)]
 pub(super) fn stratum_to_unit(k: u32, bits: u64, n: u32) -> f64 {
     clamp_unit((f64::from(k) + u64_to_f64(bits)) / f64::from(n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sequence::{SampleSequence, Stratified};
+
+    /// Exact against `/` and `%` on the divisors of the grids that matter
+    /// (1, primes, squares, the estimate's 1250, the extremes) and on
+    /// dividends at and around multiples of them and at the ends of `u32`.
+    #[test]
+    fn fast_division_is_exact() {
+        let divisors = [
+            1u32,
+            2,
+            3,
+            7,
+            13,
+            100,
+            1250,
+            2500,
+            65_535,
+            65_537,
+            (1 << 31) - 1,
+            1 << 31,
+            u32::MAX - 1,
+            u32::MAX,
+        ];
+        for d in divisors {
+            let f = FastDiv::new(d);
+            let mut xs = vec![0u32, 1, 2, u32::MAX, u32::MAX - 1, 1 << 31];
+            for q in [1u64, 2, 3, 1000, 123_457] {
+                let at = q * u64::from(d);
+                for x in [at.saturating_sub(1), at, at + 1] {
+                    if let Ok(x) = u32::try_from(x) {
+                        xs.push(x);
+                    }
+                }
+            }
+            let mut h = 0x1234_5678_u64;
+            for _ in 0..10_000 {
+                h = crate::sequence::mix64(h);
+                xs.push(h as u32);
+            }
+            for x in xs {
+                assert_eq!(f.div_rem(x), (x / d, x % d), "{x} / {d}");
+            }
+        }
+    }
+
+    /// The column and row keys are hashed per sample until the rent-or-buy
+    /// threshold, then tabulated: batches of 7 samples, which cross the
+    /// threshold part-way, give the cursor's values throughout.
+    #[test]
+    fn tabulating_the_keys_mid_pass_changes_no_value() {
+        let seq = Stratified::new(10_000, 3).unwrap(); // 100 × 100: threshold 100 samples
+        let mut cursor = seq.clone();
+        let mut batch = [glam::DVec2::ZERO; 7];
+        for start in (0..700u64).step_by(7) {
+            seq.fill_2d(start, 0, &mut batch);
+            for (k, u) in batch.iter().enumerate() {
+                cursor.start_sample(start + k as u64);
+                assert_eq!(*u, cursor.next_2d(), "sample {}", start + k as u64);
+            }
+        }
+    }
+
+    /// Negative control for the test above: a batch of another request (other
+    /// dimensions) differs from the cursor's first request.
+    #[test]
+    fn a_different_request_gives_different_points() {
+        let seq = Stratified::new(10_000, 3).unwrap();
+        let mut a = [glam::DVec2::ZERO; 64];
+        let mut b = [glam::DVec2::ZERO; 64];
+        seq.fill_2d(0, 0, &mut a);
+        seq.fill_2d(0, 1, &mut b);
+        assert!(a.iter().zip(&b).all(|(x, y)| x != y));
+    }
 }
