@@ -17,6 +17,13 @@
 //! takes one, [`next_2d`](SampleSequence::next_2d) and
 //! [`next_2d_f32`](SampleSequence::next_2d_f32) take two (the pair `(d, d+1)`).
 //!
+//! **Batches**: [`fill_2d`](SampleSequence::fill_2d) fills one dimension
+//! pair for a run of consecutive samples (a chunk of an estimate) with the
+//! values the cursor would give, to the bit. [`Sobol`] and [`Stratified`]
+//! implement it with kernels that do per batch what is per batch (keys,
+//! tables) and compute the points in blocks of arrays, at a fraction of the
+//! cost of reading them one by one (`benches/benches/sequences.rs`).
+//!
 //! ```
 //! use lambert_sampling::sequence::{SampleSequence, Sobol};
 //! use lambert_sampling::f64::UniformCone;

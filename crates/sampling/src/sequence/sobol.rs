@@ -56,6 +56,11 @@
 //! (53 bits in all); f32 is the top 24 bits, `⌊x / 2^8⌋ · 2^-24`. Both are
 //! below 1 for every `x`.
 //!
+//! **Batches**: [`SampleSequence::fill_2d`] computes a dimension pair for
+//! many consecutive indices at once, in the bit-reversed domain where the
+//! scramble acts directly, with byte-wise tables of the generator matrices
+//! (`sobol_batch.rs`); the values are the cursor's, to the bit.
+//!
 //! Why not the `sobol_burley` crate: it returns only f32, and with index
 //! shuffling gives at most `2^16` samples per seed (it keeps 16 direction
 //! numbers per dimension). This implementation keeps 32 direction numbers,

@@ -41,6 +41,12 @@
 //! and jitter are hashed from `(seed, pass)`), so any prefix of whole passes
 //! is a union of stratified sets.
 //!
+//! **Batches**: [`SampleSequence::fill_2d`] computes a dimension pair for
+//! many consecutive samples at once (`stratified_batch.rs`): keys hashed
+//! once per batch, the column and row keys tabulated once per pass and
+//! dimension pair, exact division by a precomputed reciprocal; the values
+//! are the cursor's, to the bit.
+//!
 //! f32 output is the f64 value truncated to 24 bits, so a point lying within
 //! `2^-24` above a stratum boundary `k/N` may fall just below it in f32.
 
