@@ -133,15 +133,26 @@ impl Domain {
         for (k, x) in x.iter_mut().enumerate() {
             *x = self.step(*x, keys(k));
         }
+        // The lanes still outside 0..n, listed without branches; each round
+        // steps every listed lane once and lists again those still outside,
+        // so no branch depends on a lane's value (the walk lengths are
+        // random, and a branch on them would be mispredicted often).
         let mut pending = [0u8; BLOCK];
         let mut count = 0;
         for (k, &v) in x.iter().enumerate() {
             pending[count] = k as u8;
             count += usize::from(v >= self.n);
         }
-        for &k in &pending[..count] {
-            let k = usize::from(k);
-            x[k] = self.walk_on(x[k], keys(k));
+        while count > 0 {
+            let mut still = 0;
+            for j in 0..count {
+                let k = usize::from(pending[j]);
+                let v = self.step(x[k], keys(k));
+                x[k] = v;
+                pending[still] = k as u8;
+                still += usize::from(v >= self.n);
+            }
+            count = still;
         }
     }
 }
