@@ -25,10 +25,17 @@
 //!   (multiplication and masking to `w` bits commute modulo `2^32`).
 //!
 //! The cycle walk is split: one walk step for a whole block (branch-free,
-//! structure of arrays, vectorisable), then the lanes that fell outside
-//! `0..n` (fewer than half, a quarter on average for the grids of an
-//! estimate) are gathered into a list and walked on one by one. Every
-//! value is the point-by-point value to the bit.
+//! structure of arrays), then the lanes that fell outside `0..n` (fewer
+//! than half, since `2^w < 2n`; 25 to 40 % for the grids of an estimate)
+//! are listed without branches and stepped in rounds, each round listing
+//! again those still outside, so that no branch depends on a random walk
+//! length. Every value is the point-by-point value to the bit.
+//!
+//! What remains is the work the values are defined by: about 4.6
+//! permutation steps per point (`1/p` each, `p = n/2^w`: 1.34 for the
+//! cells of a 3 125 000-sample pass, 1.64 for its 2500 rows and 1250
+//! columns), of two rounds with two 32-bit multiplications each, and three
+//! splitmix64 rounds for the jitter.
 
 use std::sync::{Arc, Mutex};
 
@@ -286,14 +293,17 @@ impl KeyCache {
 
 /// Everything a batch of one pass and dimension pair needs.
 pub(super) struct PassPlan {
-    /// Samples per pass, and the grid.
+    /// Samples per pass, `N`.
     pub n: u32,
+    /// Columns of the grid.
     pub nx: u32,
+    /// Rows of the grid.
     pub ny: u32,
     /// Keys of the cell permutation.
     pub cell: PermuteKeys,
-    /// `hash3(pass seed, d, "sigma")` and `hash3(pass seed, d, "tau")`.
+    /// `hash3(pass seed, d, "sigma")`: `σ_{d,c}` is keyed by `hash2(this, c)`.
     pub sigma_key: u64,
+    /// `hash3(pass seed, d, "tau")`: `τ_{d,r}` is keyed by `hash2(this, r)`.
     pub tau_key: u64,
     /// `hash2(pass seed, d)`: the jitter of sample `i` is `hash2(this, i)`.
     pub jitter_seed: u64,
