@@ -193,12 +193,11 @@ where
                     )?
                 } else {
                     // n_k < 2^32 by `validate`.
-                    let mut seq = Stratified::new(n_k as u32, seed).map_err(|e| {
-                        EstimateError::Config {
+                    let mut seq =
+                        Stratified::new(n_k as u32, seed).map_err(|e| EstimateError::Config {
                             field: "samples",
                             problem: e.to_string(),
-                        }
-                    })?;
+                        })?;
                     run(
                         &mut |i| sample_all(&prepared, receiver, visible, &mut seq, i),
                         n_k,

@@ -122,9 +122,7 @@ impl Bvh {
             Some(m) => m,
             // A small leaf is cheaper, or every centroid is at one place
             // (no split separates them).
-            None if n <= MAX_LEAF || (!separable && n <= u16::MAX as usize) => {
-                return leaf(self)
-            }
+            None if n <= MAX_LEAF || (!separable && n <= u16::MAX as usize) => return leaf(self),
             // Too big for a leaf: split by count.
             None => median(items, axis),
         };
@@ -324,7 +322,9 @@ mod tests {
     fn finds_what_brute_force_finds() {
         let mut boxes = Vec::new();
         for i in 0..1000u32 {
-            let h = |k: u32| ((i.wrapping_mul(2654435761).wrapping_add(k * 40503)) % 1000) as f64 / 100.0;
+            let h = |k: u32| {
+                ((i.wrapping_mul(2654435761).wrapping_add(k * 40503)) % 1000) as f64 / 100.0
+            };
             boxes.push(unit_box(DVec3::new(h(1), h(2), h(3))));
         }
         let (bvh, order) = Bvh::build(&boxes);

@@ -54,7 +54,14 @@ impl Highlight {
             return Rgb::BLACK;
         }
         let e = self.exponent;
-        self.specular * ((e + 8.0) / (8.0 * std::f64::consts::PI) * cos_h.powf(e))
+        // Integer exponents (the usual case) by repeated squaring: a few
+        // multiplications instead of a general power.
+        let power = if e.fract() == 0.0 && e <= i32::MAX as f64 {
+            cos_h.powi(e as i32)
+        } else {
+            cos_h.powf(e)
+        };
+        self.specular * ((e + 8.0) / (8.0 * std::f64::consts::PI) * power)
     }
 }
 

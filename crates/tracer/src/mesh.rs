@@ -170,7 +170,12 @@ impl Mesh {
             let mesh = Mesh::from_indexed(&positions, &faces, field).map_err(|e| {
                 TracerError::new(
                     e.field,
-                    format!("{} (object {:?}): {}", path.display(), model.name, e.problem),
+                    format!(
+                        "{} (object {:?}): {}",
+                        path.display(),
+                        model.name,
+                        e.problem
+                    ),
                 )
             })?;
             triangles.extend(mesh.triangles);
@@ -204,8 +209,10 @@ impl Mesh {
             for i in 0..n {
                 let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
                 // Counter-clockwise seen from above (+y).
-                triangles.push(Triangle::new(a, c, b).expect("a height field has no degenerate quads"));
-                triangles.push(Triangle::new(a, d, c).expect("a height field has no degenerate quads"));
+                triangles
+                    .push(Triangle::new(a, c, b).expect("a height field has no degenerate quads"));
+                triangles
+                    .push(Triangle::new(a, d, c).expect("a height field has no degenerate quads"));
             }
         }
         Mesh { triangles }
@@ -227,16 +234,31 @@ mod tests {
         ];
         // A tetrahedron's faces: each edge in two faces.
         let tet = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
-        assert_eq!(Mesh::from_indexed(&p, &tet, "path").unwrap().triangles.len(), 4);
+        assert_eq!(
+            Mesh::from_indexed(&p, &tet, "path")
+                .unwrap()
+                .triangles
+                .len(),
+            4
+        );
         // A third face on edge (0, 1).
         let fin = [[0, 2, 1], [0, 1, 3], [0, 1, 4]];
         let e = Mesh::from_indexed(&p, &fin, "path").unwrap_err();
-        assert!(e.problem.contains("not manifold") && e.problem.contains("vertices 0 and 1"), "{e}");
+        assert!(
+            e.problem.contains("not manifold") && e.problem.contains("vertices 0 and 1"),
+            "{e}"
+        );
         let flat = [[0, 1, 4]];
         let e = Mesh::from_indexed(&p, &flat, "path").unwrap_err();
-        assert!(e.problem.contains("face 0") && e.problem.contains("degenerate"), "{e}");
+        assert!(
+            e.problem.contains("face 0") && e.problem.contains("degenerate"),
+            "{e}"
+        );
         let out = [[0, 1, 9]];
-        assert!(Mesh::from_indexed(&p, &out, "path").unwrap_err().problem.contains("vertex 9"));
+        assert!(Mesh::from_indexed(&p, &out, "path")
+            .unwrap_err()
+            .problem
+            .contains("vertex 9"));
     }
 
     #[test]
@@ -246,8 +268,18 @@ mod tests {
         assert!((p - DVec3::new(1.0, 2.0, 0.0)).length() < 1e-15, "{p}");
         let e = Transform::new(1.0, DVec3::Z, 0.0, DVec3::new(f64::NAN, 0.0, 0.0)).unwrap_err();
         assert_eq!(e.field, "translate");
-        assert_eq!(Transform::new(0.0, DVec3::Z, 0.0, DVec3::ZERO).unwrap_err().field, "scale");
-        assert_eq!(Transform::new(1.0, DVec3::ZERO, 10.0, DVec3::ZERO).unwrap_err().field, "rotate_axis");
+        assert_eq!(
+            Transform::new(0.0, DVec3::Z, 0.0, DVec3::ZERO)
+                .unwrap_err()
+                .field,
+            "scale"
+        );
+        assert_eq!(
+            Transform::new(1.0, DVec3::ZERO, 10.0, DVec3::ZERO)
+                .unwrap_err()
+                .field,
+            "rotate_axis"
+        );
     }
 
     #[test]

@@ -109,8 +109,14 @@ pub fn read_exr(path: &Path) -> Result<Image, TracerError> {
         .zip(&b)
         .map(|((&r, &g), &b)| [r, g, b])
         .collect();
-    Image::from_layers(w, h, rgb, need(IRRADIANCE_CHANNEL)?, find(STD_ERROR_CHANNEL))
-        .ok_or_else(|| err("has channels of the wrong length".into()))
+    Image::from_layers(
+        w,
+        h,
+        rgb,
+        need(IRRADIANCE_CHANNEL)?,
+        find(STD_ERROR_CHANNEL),
+    )
+    .ok_or_else(|| err("has channels of the wrong length".into()))
 }
 
 /// Writes the 8-bit sRGB preview: the radiance tone-mapped by Reinhard et
@@ -121,7 +127,8 @@ pub fn read_exr(path: &Path) -> Result<Image, TracerError> {
 pub fn write_png(image: &Image, path: &Path) -> Result<(), TracerError> {
     let bytes = tone_map(image);
     let file = std::fs::File::create(path).map_err(|e| io("--out", path, e))?;
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), image.width(), image.height());
+    let mut encoder =
+        png::Encoder::new(std::io::BufWriter::new(file), image.width(), image.height());
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
@@ -143,7 +150,11 @@ pub fn tone_map(image: &Image) -> Vec<u8> {
             n += 1;
         }
     }
-    let average = if n > 0 { (log_sum / n as f64).exp() } else { 1.0 };
+    let average = if n > 0 {
+        (log_sum / n as f64).exp()
+    } else {
+        1.0
+    };
     let scale = 0.18 / average;
     let srgb = |v: f64| {
         let v = v.clamp(0.0, 1.0);

@@ -1,9 +1,11 @@
 //! A scene to trace: a camera, shapes with materials, emitters, and the
 //! radiance of rays that escape.
 
-use glam::DVec3;
-use lambert_geometry::f64::{Hit, Ray};
+use glam::{DVec2, DVec3};
+use lambert_estimator::point::{estimate_at, PointConfig, PointEstimate};
+use lambert_geometry::f64::{gamma, Hit, Ray, SHADOW_EPSILON};
 use lambert_light::emitter::Emitter;
+use lambert_light::Receiver;
 
 use crate::aggregate::{Acceleration, Aggregate, Primitive};
 use crate::camera::Camera;
@@ -87,6 +89,48 @@ impl Scene {
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f64) -> bool {
         self.aggregate.occluded(ray, t_max)
+    }
+
+    /// Whether the segment leaving the surface at `hit` along the unit
+    /// `direction` is clear of every primitive for `distance` (∞ for
+    /// directional lights and skies): a shadow ray from the hit's
+    /// error-bounded origin (pbrt-v4 §6.8.6), stopped [`SHADOW_EPSILON`]
+    /// short of `distance` so that the emitter it aims at does not count.
+    #[inline]
+    pub fn visible(&self, hit: &Hit, direction: DVec3, distance: f64) -> bool {
+        let t_max = if distance.is_finite() {
+            distance * (1.0 - SHADOW_EPSILON)
+        } else {
+            f64::INFINITY
+        };
+        !self.occluded(&hit.spawn_ray(direction), t_max)
+    }
+
+    /// The irradiance E = ∫ L V cos θ dω at `point` with unit `normal`, a
+    /// point on (or off) a surface of the scene, from every emitter, with
+    /// visibility tested against the scene and estimated as `config` says
+    /// (an irradiance probe). Shadow rays leave `point` past a rounding
+    /// bound of γ₁|point| per component.
+    ///
+    /// # Errors
+    /// A non-finite point or a zero normal (`receiver.point`,
+    /// `receiver.normal`), or a configuration the estimator rejects.
+    pub fn irradiance_at(
+        &self,
+        point: DVec3,
+        normal: DVec3,
+        config: &PointConfig,
+    ) -> Result<PointEstimate, TracerError> {
+        let receiver = Receiver::new(point, normal)?;
+        let hit = Hit {
+            distance: 0.0,
+            point,
+            normal: receiver.normal,
+            error: point.abs() * gamma(1),
+            uv: DVec2::ZERO,
+        };
+        let visible = |_: DVec3, w: DVec3, d: f64| self.visible(&hit, w, d);
+        Ok(estimate_at(&receiver, &self.emitters, &visible, config)?)
     }
 
     /// The radiance arriving along a ray that hits nothing, travelling in
@@ -211,7 +255,10 @@ impl SceneBuilder {
         if ![b.r, b.g, b.b].iter().all(|v| v.is_finite() && *v >= 0.0) {
             return Err(TracerError::new(
                 "background",
-                format!("must be finite and non-negative, got [{}, {}, {}]", b.r, b.g, b.b),
+                format!(
+                    "must be finite and non-negative, got [{}, {}, {}]",
+                    b.r, b.g, b.b
+                ),
             ));
         }
         let eye = self.camera.position();

@@ -155,7 +155,12 @@ fn only(
     Ok(())
 }
 
-fn need<T: Clone>(value: &Option<T>, field: &str, kind: &str, what: &str) -> Result<T, TracerError> {
+fn need<T: Clone>(
+    value: &Option<T>,
+    field: &str,
+    kind: &str,
+    what: &str,
+) -> Result<T, TracerError> {
     value
         .clone()
         .ok_or_else(|| TracerError::new(field, format!("is required for a {kind} {what}")))
@@ -176,17 +181,18 @@ impl RawMaterial {
             ("specular", self.specular.is_some()),
             ("shininess", self.shininess.is_some()),
         ]);
-        let allowed: &[&str] = match kind {
-            "diffuse" => &["albedo", "checker", "specular", "shininess"],
-            "mirror" => &["reflectance", "specular", "shininess"],
-            "dielectric" => &["ior", "specular", "shininess"],
-            other => {
-                return Err(TracerError::new(
+        let allowed: &[&str] =
+            match kind {
+                "diffuse" => &["albedo", "checker", "specular", "shininess"],
+                "mirror" => &["reflectance", "specular", "shininess"],
+                "dielectric" => &["ior", "specular", "shininess"],
+                other => return Err(TracerError::new(
                     "kind",
-                    format!("unknown material kind {other:?} (expected diffuse, mirror or dielectric)"),
-                ))
-            }
-        };
+                    format!(
+                        "unknown material kind {other:?} (expected diffuse, mirror or dielectric)"
+                    ),
+                )),
+            };
         only("material", kind, &fields, allowed)?;
         let surface = match kind {
             "diffuse" => Surface::Diffuse(match (&self.albedo, &self.checker) {
@@ -197,7 +203,10 @@ impl RawMaterial {
                     scale: c.scale,
                 },
                 (Some(_), Some(_)) => {
-                    return Err(TracerError::new("albedo", "give albedo or checker, not both"))
+                    return Err(TracerError::new(
+                        "albedo",
+                        "give albedo or checker, not both",
+                    ))
                 }
                 (None, None) => {
                     return Err(TracerError::new(
@@ -227,7 +236,10 @@ impl RawMaterial {
         let material = Material { surface, highlight };
         material.validate().map_err(|e| {
             // The checker's fields live in their own table.
-            if matches!(e.field.as_str(), "albedo.even" | "albedo.odd" | "albedo.scale") {
+            if matches!(
+                e.field.as_str(),
+                "albedo.even" | "albedo.odd" | "albedo.scale"
+            ) {
                 TracerError::new(e.field.replacen("albedo", "checker", 1), e.problem)
             } else {
                 e
@@ -286,7 +298,10 @@ impl RawShape {
                 n(&self.center, "center")?,
                 need(&self.radius, "radius", kind, "shape")?,
             )?),
-            "plane" => Shape::Plane(Plane::new(n(&self.point, "point")?, n(&self.normal, "normal")?)?),
+            "plane" => Shape::Plane(Plane::new(
+                n(&self.point, "point")?,
+                n(&self.normal, "normal")?,
+            )?),
             "disk" => Shape::Disk(Disk::new(
                 n(&self.center, "center")?,
                 n(&self.normal, "normal")?,
@@ -316,7 +331,10 @@ impl RawShape {
                     v3(self.translate.unwrap_or([0.0; 3])),
                 )?;
                 if self.rotate_axis.is_some() && self.rotate_deg.is_none() {
-                    return Err(TracerError::new("rotate_deg", "is required with rotate_axis"));
+                    return Err(TracerError::new(
+                        "rotate_deg",
+                        "is required with rotate_axis",
+                    ));
                 }
                 let path = base.join(need(&self.path, "path", kind, "shape")?);
                 let mesh = Mesh::load_obj(&path, &transform, "path")?;
@@ -355,7 +373,11 @@ pub fn parse(text: &str, base: &Path) -> Result<Scene, TracerError> {
             })
             .and_then(RawMaterial::build)
             .map_err(|e| {
-                let e = if e.field == "material" { e } else { e.within("material") };
+                let e = if e.field == "material" {
+                    e
+                } else {
+                    e.within("material")
+                };
                 e.within(&place)
             })?;
         let id = b.add_material(material);

@@ -33,8 +33,11 @@ impl Texture {
         match *self {
             Texture::Constant(c) => c,
             Texture::Checker { even, odd, scale } => {
-                let k = (uv.x * scale).floor() + (uv.y * scale).floor();
-                if k.rem_euclid(2.0) == 0.0 {
+                // The parity of ⌊u·s⌋ + ⌊v·s⌋ (as integers: exact for
+                // |u·s| < 2⁶³, saturating beyond, where squares are far
+                // below a pixel anyway).
+                let k = (uv.x * scale).floor() as i64 ^ (uv.y * scale).floor() as i64;
+                if k & 1 == 0 {
                     even
                 } else {
                     odd
@@ -52,7 +55,11 @@ impl Texture {
                 reflectance("even", even).map_err(|e| e.within(field))?;
                 reflectance("odd", odd).map_err(|e| e.within(field))?;
                 if !(scale.is_finite() && scale > 0.0) {
-                    return Err(TracerError::new("scale", format!("must be finite and positive, got {scale}")).within(field));
+                    return Err(TracerError::new(
+                        "scale",
+                        format!("must be finite and positive, got {scale}"),
+                    )
+                    .within(field));
                 }
                 Ok(())
             }
@@ -67,7 +74,10 @@ pub fn reflectance(field: &str, c: Rgb) -> Result<(), TracerError> {
         if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
             return Err(TracerError::new(
                 field,
-                format!("every channel must lie in [0, 1], got [{}, {}, {}]", c.r, c.g, c.b),
+                format!(
+                    "every channel must lie in [0, 1], got [{}, {}, {}]",
+                    c.r, c.g, c.b
+                ),
             ));
         }
     }

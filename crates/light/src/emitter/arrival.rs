@@ -77,8 +77,12 @@ mod tests {
             Emitter::Sky(Sky::new(0.5).unwrap()),
             Emitter::SkyCap(SkyCap::new(DVec3::Z, 0.3, 1.5).unwrap()),
             Emitter::Sphere(SphereLight::new(DVec3::new(0.2, 0.0, 3.0), 1.0, 2.0).unwrap()),
-            Emitter::Disk(DiskLight::new(DVec3::new(0.0, 0.0, 2.0), -DVec3::Z, 1.0, 3.0, false).unwrap()),
-            Emitter::Disk(DiskLight::new(DVec3::new(0.0, 0.0, 2.0), DVec3::Z, 1.0, 3.0, false).unwrap()),
+            Emitter::Disk(
+                DiskLight::new(DVec3::new(0.0, 0.0, 2.0), -DVec3::Z, 1.0, 3.0, false).unwrap(),
+            ),
+            Emitter::Disk(
+                DiskLight::new(DVec3::new(0.0, 0.0, 2.0), DVec3::Z, 1.0, 3.0, false).unwrap(),
+            ),
             Emitter::Polygon(
                 PolygonLight::new(
                     vec![
@@ -97,7 +101,8 @@ mod tests {
         for e in &emitters {
             for i in 0..200 {
                 let a = i as f64 * 0.1;
-                let w = DVec3::new(0.6 * a.cos(), 0.6 * a.sin(), (i as f64 / 100.0) - 1.0).normalize();
+                let w =
+                    DVec3::new(0.6 * a.cos(), 0.6 * a.sin(), (i as f64 / 100.0) - 1.0).normalize();
                 let l = e.radiance_toward(DVec3::ZERO, w);
                 let arrival = e.arrival(DVec3::ZERO, w);
                 assert_eq!(arrival.map_or(0.0, |a| a.radiance), l, "{} {w}", e.kind());

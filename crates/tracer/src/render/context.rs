@@ -6,7 +6,7 @@ use std::cell::Cell;
 
 use glam::DVec3;
 use lambert_estimator::point::{estimate_at, stream_seed, PointEstimate};
-use lambert_geometry::f64::{Hit, Ray, SHADOW_EPSILON};
+use lambert_geometry::f64::Hit;
 use lambert_light::emitter::Emitter;
 use lambert_light::Receiver;
 
@@ -102,21 +102,11 @@ impl<'a> Context<'a> {
         }
     }
 
-    /// Whether the segment leaving `hit` along the unit `direction` is
-    /// clear for `distance` (∞ for directional lights and skies): a shadow
-    /// ray from the error-bounded origin (pbrt-v4 §6.8.6), stopped
-    /// [`SHADOW_EPSILON`] short of the light so that the emitter's own
-    /// surface does not count.
+    /// [`Scene::visible`], counted as a shadow ray.
     #[inline]
     pub(super) fn visible(&self, hit: &Hit, direction: DVec3, distance: f64) -> bool {
         self.shadow.set(self.shadow.get() + 1);
-        let ray: Ray = hit.spawn_ray(direction);
-        let t_max = if distance.is_finite() {
-            distance * (1.0 - SHADOW_EPSILON)
-        } else {
-            f64::INFINITY
-        };
-        !self.scene.occluded(&ray, t_max)
+        self.scene.visible(hit, direction, distance)
     }
 
     /// The direct light at `hit` on the side of the unit normal `n`
@@ -175,7 +165,10 @@ impl<'a> Context<'a> {
     ) -> Result<PointEstimate, TracerError> {
         let k = self.estimates.get();
         self.estimates.set(k + 1);
-        let config = self.config.estimate.with_seed(stream_seed(self.pixel_seed, k));
+        let config = self
+            .config
+            .estimate
+            .with_seed(stream_seed(self.pixel_seed, k));
         let receiver = Receiver::new(hit.point, n)?;
         let visible = |_: DVec3, w: DVec3, d: f64| self.visible(hit, w, d);
         Ok(estimate_at(&receiver, emitters, &visible, &config)?)

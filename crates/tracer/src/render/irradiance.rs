@@ -29,7 +29,11 @@ pub(super) fn pixel(cx: &Context<'_>, ray: &Ray) -> Result<Pixel, TracerError> {
             two_sided,
         } => {
             let seen = hit.is_front(ray.direction) || two_sided;
-            return Ok(Pixel::background(Rgb::grey(if seen { radiance } else { 0.0 })));
+            return Ok(Pixel::background(Rgb::grey(if seen {
+                radiance
+            } else {
+                0.0
+            })));
         }
         Surface::Diffuse(texture) => texture.at(hit.uv),
         Surface::Mirror(_) | Surface::Dielectric { .. } => Rgb::WHITE,

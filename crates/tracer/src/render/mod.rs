@@ -177,8 +177,8 @@ pub fn render(
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Rendered, TracerError> {
     let start = Instant::now();
-    let uses_estimates = config.mode == Mode::Irradiance && !config.analytic
-        || scene.has_area_emitters();
+    let uses_estimates =
+        config.mode == Mode::Irradiance && !config.analytic || scene.has_area_emitters();
     if uses_estimates {
         config.estimate.validate()?;
     }
