@@ -98,7 +98,7 @@ pub fn read_exr(path: &Path) -> Result<Image, TracerError> {
             .channel_data
             .list
             .iter()
-            .find(|c| c.name == x::Text::from(name))
+            .find(|c| c.name == *name)
             .map(|c| c.sample_data.values_as_f32().collect())
     };
     let need = |name: &str| find(name).ok_or_else(|| err(format!("has no channel {name}")));

@@ -181,18 +181,19 @@ impl RawMaterial {
             ("specular", self.specular.is_some()),
             ("shininess", self.shininess.is_some()),
         ]);
-        let allowed: &[&str] =
-            match kind {
-                "diffuse" => &["albedo", "checker", "specular", "shininess"],
-                "mirror" => &["reflectance", "specular", "shininess"],
-                "dielectric" => &["ior", "specular", "shininess"],
-                other => return Err(TracerError::new(
+        let allowed: &[&str] = match kind {
+            "diffuse" => &["albedo", "checker", "specular", "shininess"],
+            "mirror" => &["reflectance", "specular", "shininess"],
+            "dielectric" => &["ior", "specular", "shininess"],
+            other => {
+                return Err(TracerError::new(
                     "kind",
                     format!(
                         "unknown material kind {other:?} (expected diffuse, mirror or dielectric)"
                     ),
-                )),
-            };
+                ))
+            }
+        };
         only("material", kind, &fields, allowed)?;
         let surface = match kind {
             "diffuse" => Surface::Diffuse(match (&self.albedo, &self.checker) {

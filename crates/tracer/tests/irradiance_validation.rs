@@ -160,11 +160,11 @@ fn unoccluded_floor_matches_the_closed_forms_per_pixel() {
         let brighter = match light {
             Emitter::Disk(d) => Emitter::Disk(DiskLight {
                 radiance: d.radiance * 1.01,
-                ..d.clone()
+                ..*d
             }),
             Emitter::Sphere(s) => Emitter::Sphere(SphereLight {
                 radiance: s.radiance * 1.01,
-                ..s.clone()
+                ..*s
             }),
             Emitter::Polygon(p) => Emitter::Polygon(PolygonLight {
                 radiance: p.radiance * 1.01,
