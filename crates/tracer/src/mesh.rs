@@ -230,7 +230,8 @@ mod tests {
             DVec3::X,
             DVec3::Y,
             DVec3::Z,
-            DVec3::new(-1.0, 0.0, 0.0),
+            DVec3::new(0.0, -1.0, 0.5),
+            DVec3::new(2.0, 0.0, 0.0),
         ];
         // A tetrahedron's faces: each edge in two faces.
         let tet = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
@@ -248,7 +249,7 @@ mod tests {
             e.problem.contains("not manifold") && e.problem.contains("vertices 0 and 1"),
             "{e}"
         );
-        let flat = [[0, 1, 4]];
+        let flat = [[0, 1, 5]];
         let e = Mesh::from_indexed(&p, &flat, "path").unwrap_err();
         assert!(
             e.problem.contains("face 0") && e.problem.contains("degenerate"),
