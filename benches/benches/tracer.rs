@@ -198,6 +198,38 @@ fn bvh_threshold(c: &mut Criterion) {
     g.finish();
 }
 
+/// The switch on whole scenes: the `whitted` frame (3 bounded
+/// primitives: spheres and a parallelogram) and a `cornell` ray-cast frame
+/// (41: triangles, parallelograms, the light) at 256×256, one thread, by
+/// brute force and with the BVH.
+fn bvh_scenes(c: &mut Criterion) {
+    let mut g = c.benchmark_group("tracer_bvh_scenes");
+    let config = RenderConfig {
+        mode: Mode::Raycast,
+        ..RenderConfig::default()
+    };
+    let pool = pool(1);
+    for (name, scene) in [
+        ("whitted", builtin::whitted()),
+        ("cornell", builtin::cornell()),
+    ] {
+        for (how, acceleration) in [
+            ("brute force", Acceleration::BruteForce),
+            ("bvh", Acceleration::Bvh),
+        ] {
+            let scene = scene
+                .clone()
+                .with_acceleration(acceleration)
+                .with_size(256, 256)
+                .unwrap();
+            g.bench_function(format!("{name} raycast 256x256 {how}"), |b| {
+                b.iter(|| pool.install(|| black_box(render(&scene, &config, &|_, _| {}).unwrap())))
+            });
+        }
+    }
+    g.finish();
+}
+
 // criterion_group! generates an undocumented pub fn.
 #[allow(missing_docs)]
 mod group {
@@ -205,7 +237,7 @@ mod group {
     criterion_group! {
         name = benches;
         config = config();
-        targets = whitted_frame, mesh_rays, bvh_threshold, cornell_irradiance
+        targets = whitted_frame, mesh_rays, bvh_threshold, bvh_scenes, cornell_irradiance
     }
 }
 criterion_main!(group::benches);

@@ -206,48 +206,19 @@ impl Bvh {
     /// `hit(k, t)` tests leaf primitive k for a hit closer than t and
     /// returns its distance. Returns (k, distance).
     #[inline]
-    pub fn nearest<F>(&self, ray: &Ray, mut t_max: f64, mut hit: F) -> Option<(usize, f64)>
+    pub fn nearest<F>(&self, ray: &Ray, t_max: f64, mut hit: F) -> Option<(usize, f64)>
     where
         F: FnMut(usize, f64) -> Option<f64>,
     {
-        let inv = ray.direction.recip();
-        let negative = [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0];
-        let mut stack = [0u32; STACK];
-        let mut top = 0;
-        let mut node = 0usize;
         let mut best = None;
-        if self.nodes.is_empty() {
-            return None;
-        }
-        loop {
-            let n = &self.nodes[node];
-            if n.bounds.hit(ray, inv, t_max) {
-                if n.count > 0 {
-                    let start = n.offset as usize;
-                    for k in start..start + n.count as usize {
-                        if let Some(t) = hit(k, t_max) {
-                            t_max = t;
-                            best = Some((k, t));
-                        }
-                    }
-                } else {
-                    let (near, far) = if negative[n.axis as usize] {
-                        (n.offset as usize, node + 1)
-                    } else {
-                        (node + 1, n.offset as usize)
-                    };
-                    stack[top] = far as u32;
-                    top += 1;
-                    node = near;
-                    continue;
-                }
+        self.walk(ray, t_max, |k, t_max| {
+            if let Some(t) = hit(k, *t_max) {
+                *t_max = t;
+                best = Some((k, t));
             }
-            if top == 0 {
-                return best;
-            }
-            top -= 1;
-            node = stack[top] as usize;
-        }
+            false
+        });
+        best
     }
 
     /// Whether any primitive is hit before `t_max`: `hit(k, t)` tests leaf
@@ -257,21 +228,33 @@ impl Bvh {
     where
         F: FnMut(usize, f64) -> bool,
     {
+        self.walk(ray, t_max, |k, t_max| hit(k, *t_max))
+    }
+
+    /// Visits the leaf primitives whose boxes the ray meets before the
+    /// current `t_max`, nearer child first: `leaf(k, &mut t_max)` may
+    /// shorten the ray, and returns true to stop (then `walk` returns
+    /// true).
+    #[inline]
+    fn walk<F>(&self, ray: &Ray, mut t_max: f64, mut leaf: F) -> bool
+    where
+        F: FnMut(usize, &mut f64) -> bool,
+    {
+        if self.nodes.is_empty() {
+            return false;
+        }
         let inv = ray.direction.recip();
         let negative = [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0];
         let mut stack = [0u32; STACK];
         let mut top = 0;
         let mut node = 0usize;
-        if self.nodes.is_empty() {
-            return false;
-        }
         loop {
             let n = &self.nodes[node];
             if n.bounds.hit(ray, inv, t_max) {
                 if n.count > 0 {
                     let start = n.offset as usize;
                     for k in start..start + n.count as usize {
-                        if hit(k, t_max) {
+                        if leaf(k, &mut t_max) {
                             return true;
                         }
                     }

@@ -53,6 +53,14 @@ impl Scene {
         Ok(self)
     }
 
+    /// The same scene with its primitives searched as `acceleration` says
+    /// (for measurements: [`Acceleration::Auto`] is the default).
+    pub fn with_acceleration(mut self, acceleration: Acceleration) -> Self {
+        let primitives: Vec<Primitive> = self.aggregate.primitives().cloned().collect();
+        self.aggregate = Aggregate::with_acceleration(primitives, acceleration);
+        self
+    }
+
     /// The emitters.
     pub fn emitters(&self) -> &[Emitter] {
         &self.emitters

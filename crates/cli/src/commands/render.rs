@@ -6,9 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use lambert_estimator::estimation::SequenceKind;
 use lambert_estimator::point::PointConfig;
-use lambert_estimator::strategy::Strategy;
 use lambert_tracer::output::write_outputs;
 use lambert_tracer::{builtin, render_with_threads, scene_file, Mode, RenderConfig};
 use serde_json::json;
@@ -81,14 +79,8 @@ Examples:
 /// Runs the command.
 pub fn run(options: &RenderOptions) -> Result<(), String> {
     let mode: Mode = options.mode.parse().map_err(|e| format!("--mode: {e}"))?;
-    let strategy: Strategy = options
-        .strategy
-        .parse()
-        .map_err(|e| format!("--strategy: {e}"))?;
-    let sequence: SequenceKind = options
-        .sequence
-        .parse()
-        .map_err(|e| format!("--sequence: {e}"))?;
+    let (strategy, sequence) =
+        crate::parse::strategy_and_sequence(&options.strategy, &options.sequence)?;
     if options.analytic && mode != Mode::Irradiance {
         return Err("--analytic: only the irradiance mode has a closed form".into());
     }
