@@ -117,18 +117,32 @@ macro_rules! disk_impl {
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
                 let t = self.hit_distance(ray, t_max)?;
-                let (point, error) = point_on_plane(ray, t, self.center, self.frame.z);
-                let local = self.frame.to_local(point - self.center);
-                let rho = local.x.hypot(local.y);
-                let phi = local.y.atan2(local.x);
-                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
                 Some(Hit {
+                    uv: self.surface_parameters(ray, t),
+                    ..self.hit_at(ray, t)
+                })
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let (point, error) = point_on_plane(ray, t, self.center, self.frame.z);
+                Hit {
                     distance: t,
                     point,
                     normal: self.frame.z,
                     error,
-                    uv: V2::new((rho / self.radius).min(1.0), phi / (2.0 * PI)),
-                })
+                    uv: V2::ZERO,
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let (point, _) = point_on_plane(ray, t, self.center, self.frame.z);
+                let local = self.frame.to_local(point - self.center);
+                let rho = local.x.hypot(local.y);
+                let phi = local.y.atan2(local.x);
+                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+                V2::new((rho / self.radius).min(1.0), phi / (2.0 * PI))
             }
         }
     };

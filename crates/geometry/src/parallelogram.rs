@@ -154,14 +154,28 @@ macro_rules! parallelogram_impl {
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
                 let t = self.hit_distance(ray, t_max)?;
-                let (point, error) = point_on_plane(ray, t, self.corner, self.normal);
                 Some(Hit {
+                    uv: self.surface_parameters(ray, t),
+                    ..self.hit_at(ray, t)
+                })
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let (point, error) = point_on_plane(ray, t, self.corner, self.normal);
+                Hit {
                     distance: t,
                     point,
                     normal: self.normal,
                     error,
-                    uv: self.parameters(point).clamp(V2::ZERO, V2::ONE),
-                })
+                    uv: V2::ZERO,
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let (point, _) = point_on_plane(ray, t, self.corner, self.normal);
+                self.parameters(point).clamp(V2::ZERO, V2::ONE)
             }
         }
     };

@@ -163,6 +163,30 @@ macro_rules! ray_impl {
         }
 
         /// Ray intersection, implemented by every shape.
+        ///
+        /// [`Intersect::intersect`] is the composition of three steps that
+        /// can also be called alone, for tracers that test many shapes and
+        /// need the record of the nearest only, and surface parameters only
+        /// where a texture is looked up: [`Intersect::hit_distance`] (the
+        /// decision and t), [`Intersect::hit_at`] (the record at that t,
+        /// without the parameters) and [`Intersect::surface_parameters`]
+        /// (the parameters at that t). For every shape of this crate
+        /// `intersect(ray, t_max)` is, to the bit,
+        /// `Hit { uv: surface_parameters(ray, t), ..hit_at(ray, t) }` with
+        /// `t = hit_distance(ray, t_max)?`.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::{Intersect, Ray, Sphere};")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        #[doc = concat!("let s = Sphere::new(", stringify!($v3), "::new(0.3, 0.0, 10.0), 1.0)?;")]
+        #[doc = concat!("let ray = Ray::new(", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z);")]
+        #[doc = concat!("let full = s.intersect(&ray, ", stringify!($p), "::INFINITY).unwrap();")]
+        #[doc = concat!("let t = s.hit_distance(&ray, ", stringify!($p), "::INFINITY).unwrap();")]
+        /// let record = s.hit_at(&ray, t);
+        /// assert_eq!((record.point, record.normal, record.error), (full.point, full.normal, full.error));
+        /// assert_eq!(s.surface_parameters(&ray, t), full.uv);
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
         pub trait Intersect {
             /// The nearest hit with 0 < t < `t_max`, with its point, normal,
             /// error bound and surface parameters.
@@ -172,6 +196,45 @@ macro_rules! ray_impl {
             /// only: the same decision as [`Intersect::intersect`], without
             /// building the hit record (shadow rays, radiance lookups).
             fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real>;
+
+            /// The record of the hit at `t`, a value that
+            /// [`Intersect::hit_distance`] returned for `ray`: what
+            /// [`Intersect::intersect`] reports, except that the surface
+            /// parameters `uv` are left at zero (a tracer asks for them
+            /// with [`Intersect::surface_parameters`] where a material
+            /// needs them). The shapes of this crate build it from `t`
+            /// without repeating the test, except the triangle, whose point
+            /// is interpolated from the barycentrics of the test.
+            ///
+            /// # Panics
+            /// The default (for shapes outside this crate) takes the record
+            /// from `intersect(ray, ∞)` and panics if that finds no hit, as
+            /// it cannot when `t` came from `hit_distance`.
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let _ = t;
+                let hit = self
+                    .intersect(ray, Real::INFINITY)
+                    .expect("hit_at: t must come from hit_distance for this ray");
+                Hit {
+                    uv: V2::ZERO,
+                    ..hit
+                }
+            }
+
+            /// The surface parameters (u, v) of the hit at `t`, a value that
+            /// [`Intersect::hit_distance`] returned for `ray`: the `uv` that
+            /// [`Intersect::intersect`] reports (see each shape).
+            ///
+            /// # Panics
+            /// As [`Intersect::hit_at`]'s default.
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let _ = t;
+                self.intersect(ray, Real::INFINITY)
+                    .expect("surface_parameters: t must come from hit_distance for this ray")
+                    .uv
+            }
         }
     };
 }

@@ -21,7 +21,9 @@ macro_rules! sphere_impl {
         ///   line, the small root as c/q where the other form would cancel.
         ///   The hit point is projected back onto the sphere, which bounds
         ///   its error by γ₅ of its offset from the center plus the
-        ///   rounding of adding the center (pbrt-v4 §6.8.5).
+        ///   rounding of adding the center (pbrt-v4 §6.8.5);
+        /// - surface parameters (φ/2π, θ/π) of the outward normal, φ from
+        ///   +x about +z in [0, 2π), θ from +z.
         ///
         /// ```
         #[doc = concat!("use lambert_geometry::", stringify!($p), "::{Intersect, Ray, Sphere};")]
@@ -124,6 +126,15 @@ macro_rules! sphere_impl {
                 let other = if q != 0.0 { c / q } else { 0.0 };
                 Some(if q < other { (q, other) } else { (other, q) })
             }
+
+            /// The hit point at `t` along `ray`, relative to the center and
+            /// projected back onto the surface: |offset| = r up to one
+            /// rounding.
+            #[inline]
+            fn surface_offset(&self, ray: &Ray, t: Real) -> V3 {
+                let raw = ray.at(t) - self.center;
+                raw * (self.radius / raw.length())
+            }
         }
 
         impl Intersect for Sphere {
@@ -137,22 +148,32 @@ macro_rules! sphere_impl {
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
                 let t = self.hit_distance(ray, t_max)?;
-                // Back onto the surface: |offset| = r up to one rounding.
-                let raw = ray.at(t) - self.center;
-                let offset = raw * (self.radius / raw.length());
+                Some(Hit {
+                    uv: self.surface_parameters(ray, t),
+                    ..self.hit_at(ray, t)
+                })
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let offset = self.surface_offset(ray, t);
                 let point = self.center + offset;
-                let error = offset.abs() * gamma(5) + point.abs() * gamma(1);
-                let normal = offset / self.radius;
+                Hit {
+                    distance: t,
+                    point,
+                    normal: (offset / self.radius).normalize(),
+                    error: offset.abs() * gamma(5) + point.abs() * gamma(1),
+                    uv: V2::ZERO,
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let normal = self.surface_offset(ray, t) / self.radius;
                 let phi = normal.y.atan2(normal.x);
                 let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
                 let theta = normal.z.clamp(-1.0, 1.0).acos();
-                Some(Hit {
-                    distance: t,
-                    point,
-                    normal: normal.normalize(),
-                    error,
-                    uv: V2::new(phi / (2.0 * PI), theta / PI),
-                })
+                V2::new(phi / (2.0 * PI), theta / PI)
             }
         }
     };

@@ -119,6 +119,18 @@ impl Aggregate {
     /// the winner only.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<(Hit, &Primitive)> {
+        let (p, t) = self.nearest(ray, t_max)?;
+        let hit = Hit {
+            uv: p.shape.surface_parameters(ray, t),
+            ..p.shape.hit_at(ray, t)
+        };
+        Some((hit, p))
+    }
+
+    /// The primitive with the nearest hit along `ray` before `t_max`, and
+    /// the hit's distance (no hit record: [`Shape::hit_at`] builds it).
+    #[inline]
+    pub fn nearest(&self, ray: &Ray, t_max: f64) -> Option<(&Primitive, f64)> {
         let mut best: Option<(&Primitive, f64)> = None;
         let mut t_max = t_max;
         let test = |p: &'_ Primitive, t_max: f64| p.shape.hit_distance(ray, t_max);
@@ -144,9 +156,7 @@ impl Aggregate {
                 t_max = t;
             }
         }
-        let (p, _) = best?;
-        // The same decision as hit_distance, so the record exists.
-        p.shape.intersect(ray, f64::INFINITY).map(|h| (h, p))
+        best
     }
 
     /// Whether anything is hit along `ray` before `t_max` (shadow rays).

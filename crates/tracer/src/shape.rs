@@ -1,6 +1,6 @@
 //! The shapes a scene is made of: the geometry crate's, behind one enum.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use lambert_geometry::f64::{
     ConvexPolygon, Disk, Hit, Intersect, Parallelogram, Plane, Ray, Sphere, Triangle,
 };
@@ -89,6 +89,35 @@ impl Shape {
             Shape::Triangle(s) => s.intersect(ray, t_max),
             Shape::Parallelogram(s) => s.intersect(ray, t_max),
             Shape::Polygon(s) => s.intersect(ray, t_max),
+        }
+    }
+
+    /// The record of the hit at `t`, a distance [`Shape::hit_distance`]
+    /// returned, with the surface parameters left at zero (see
+    /// `lambert_geometry`'s `Intersect::hit_at`).
+    #[inline]
+    pub fn hit_at(&self, ray: &Ray, t: f64) -> Hit {
+        match self {
+            Shape::Sphere(s) => s.hit_at(ray, t),
+            Shape::Plane(s) => s.hit_at(ray, t),
+            Shape::Disk(s) => s.hit_at(ray, t),
+            Shape::Triangle(s) => s.hit_at(ray, t),
+            Shape::Parallelogram(s) => s.hit_at(ray, t),
+            Shape::Polygon(s) => s.hit_at(ray, t),
+        }
+    }
+
+    /// The surface parameters of the hit at `t`, a distance
+    /// [`Shape::hit_distance`] returned: the `uv` of [`Shape::intersect`].
+    #[inline]
+    pub fn surface_parameters(&self, ray: &Ray, t: f64) -> DVec2 {
+        match self {
+            Shape::Sphere(s) => s.surface_parameters(ray, t),
+            Shape::Plane(s) => s.surface_parameters(ray, t),
+            Shape::Disk(s) => s.surface_parameters(ray, t),
+            Shape::Triangle(s) => s.surface_parameters(ray, t),
+            Shape::Parallelogram(s) => s.surface_parameters(ray, t),
+            Shape::Polygon(s) => s.surface_parameters(ray, t),
         }
     }
 
