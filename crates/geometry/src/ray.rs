@@ -21,6 +21,7 @@
 
 macro_rules! ray_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::batch::$p::RayBatch;
         use crate::precision::$p::{Real, V2, V3};
 
         /// γₙ = n·u/(1 − n·u), the relative error bound of n roundings
@@ -234,6 +235,57 @@ macro_rules! ray_impl {
                 self.intersect(ray, Real::INFINITY)
                     .expect("surface_parameters: t must come from hit_distance for this ray")
                     .uv
+            }
+
+            /// The nearest-hit search of a tracer, one shape against many
+            /// rays: for every ray i of `rays` that meets the shape at
+            /// 0 < t < `nearest[i]`, sets `nearest[i] = t` and
+            /// `ids[i] = id`. Per ray that is, to the bit,
+            /// `hit_distance(ray_i, nearest[i])`; spheres, planes, disks
+            /// and parallelograms run it as a loop the compiler vectorises
+            /// (see [`RayBatch`]).
+            ///
+            /// # Panics
+            /// If `nearest` or `ids` is not as long as `rays`.
+            #[inline]
+            fn nearest_in_batch(
+                &self,
+                rays: &RayBatch,
+                id: u32,
+                nearest: &mut [Real],
+                ids: &mut [u32],
+            ) {
+                assert!(
+                    nearest.len() == rays.len() && ids.len() == rays.len(),
+                    "one entry per ray"
+                );
+                for i in 0..rays.len() {
+                    if let Some(t) = self.hit_distance(&rays.get(i), nearest[i]) {
+                        nearest[i] = t;
+                        ids[i] = id;
+                    }
+                }
+            }
+
+            /// The shadow-ray test of a tracer, one shape against many
+            /// rays: sets `blocked[i]` for every ray i of `rays` that meets
+            /// the shape at 0 < t < `t_max[i]` (and leaves the others as
+            /// they are): per ray, `hit_distance(ray_i, t_max[i]).is_some()`
+            /// (see [`Intersect::nearest_in_batch`]).
+            ///
+            /// # Panics
+            /// If `t_max` or `blocked` is not as long as `rays`.
+            #[inline]
+            fn occludes_in_batch(&self, rays: &RayBatch, t_max: &[Real], blocked: &mut [bool]) {
+                assert!(
+                    t_max.len() == rays.len() && blocked.len() == rays.len(),
+                    "one entry per ray"
+                );
+                for i in 0..rays.len() {
+                    if !blocked[i] && self.hit_distance(&rays.get(i), t_max[i]).is_some() {
+                        blocked[i] = true;
+                    }
+                }
             }
         }
     };

@@ -3,6 +3,7 @@
 macro_rules! sphere_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
         use crate::precision::$p::{wide3, Real, V2, V3, PI};
+        use crate::batch::$p::{nearest_lanes, occludes_lanes, RayBatch};
         use crate::ray::$p::{gamma, Hit, Intersect, Ray};
         use crate::validate;
         use crate::GeometryError;
@@ -108,23 +109,26 @@ macro_rules! sphere_impl {
                 2.0 * PI * s * s / (1.0 + c)
             }
 
-            /// The roots (near, far) of the ray's quadratic, if it meets the
-            /// sphere's surface at all.
-            #[inline]
-            fn roots(&self, ray: &Ray) -> Option<(Real, Real)> {
-                let v = ray.origin - self.center;
-                let b = v.dot(ray.direction);
-                let perp = v - ray.direction * b;
-                let disc = (self.radius - perp.length()) * (self.radius + perp.length());
-                if disc < 0.0 {
-                    return None;
-                }
+            /// The test without branches, for one ray or a batch: whether
+            /// the ray from `origin` along `direction` meets the sphere at
+            /// some t > 0, and the nearest such t (the far root from
+            /// inside).
+            #[inline(always)]
+            fn lane(&self, origin: V3, direction: V3) -> (bool, Real) {
+                let v = origin - self.center;
+                let b = v.dot(direction);
+                let perp = v - direction * b;
+                let perp_length = perp.length();
+                let disc = (self.radius - perp_length) * (self.radius + perp_length);
+                // NaN when the line misses (disc < 0): discarded below.
                 let root = disc.sqrt();
                 let c = v.length_squared() - self.radius * self.radius;
                 // q = −(b + sign(b)·√disc); the roots are q and c/q.
                 let q = if b > 0.0 { -(b + root) } else { -b + root };
                 let other = if q != 0.0 { c / q } else { 0.0 };
-                Some(if q < other { (q, other) } else { (other, q) })
+                let (t0, t1) = if q < other { (q, other) } else { (other, q) };
+                let t = if t0 > 0.0 { t0 } else { t1 };
+                (!(disc < 0.0) & (t > 0.0), t)
             }
 
             /// The hit point at `t` along `ray`, relative to the center and
@@ -140,9 +144,24 @@ macro_rules! sphere_impl {
         impl Intersect for Sphere {
             #[inline]
             fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real> {
-                let (t0, t1) = self.roots(ray)?;
-                let t = if t0 > 0.0 { t0 } else { t1 };
-                (t > 0.0 && t < t_max).then_some(t)
+                let (hit, t) = self.lane(ray.origin, ray.direction);
+                (hit && t < t_max).then_some(t)
+            }
+
+            #[inline(always)]
+            fn nearest_in_batch(
+                &self,
+                rays: &RayBatch,
+                id: u32,
+                nearest: &mut [Real],
+                ids: &mut [u32],
+            ) {
+                nearest_lanes(rays, id, nearest, ids, |o, d| self.lane(o, d));
+            }
+
+            #[inline(always)]
+            fn occludes_in_batch(&self, rays: &RayBatch, t_max: &[Real], blocked: &mut [bool]) {
+                occludes_lanes(rays, t_max, blocked, |o, d| self.lane(o, d));
             }
 
             #[inline]

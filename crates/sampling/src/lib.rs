@@ -31,6 +31,7 @@ mod discrete;
 mod disk;
 pub mod error;
 mod hemisphere;
+pub mod isa;
 mod light_sample;
 mod light_sampler;
 mod polygon_light;

@@ -129,12 +129,25 @@ impl Scene {
     /// short of `distance` so that the emitter it aims at does not count.
     #[inline]
     pub fn visible(&self, hit: &Hit, direction: DVec3, distance: f64) -> bool {
+        let (ray, t_max) = Scene::shadow_ray(hit, direction, distance);
+        !self.occluded(&ray, t_max)
+    }
+
+    /// The shadow ray [`Scene::visible`] traces, and its limit.
+    #[inline]
+    pub fn shadow_ray(hit: &Hit, direction: DVec3, distance: f64) -> (Ray, f64) {
         let t_max = if distance.is_finite() {
             distance * (1.0 - SHADOW_EPSILON)
         } else {
             f64::INFINITY
         };
-        !self.occluded(&hit.spawn_ray(direction), t_max)
+        (hit.spawn_ray(direction), t_max)
+    }
+
+    /// The material of `primitive` (one of this scene's).
+    #[inline]
+    pub fn material_of(&self, primitive: &Primitive) -> &Material {
+        &self.materials[primitive.material as usize]
     }
 
     /// The irradiance E = ∫ L V cos θ dω at `point` with unit `normal`, a
