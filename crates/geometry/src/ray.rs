@@ -145,22 +145,49 @@ macro_rules! ray_impl {
         /// by d = |normal|·`error` (the error box's extent along the
         /// normal), then rounded one ulp further from `point` per
         /// component (pbrt-v4 §6.8.6, "Robust spawned ray origins").
+        ///
+        /// The rounding is written without branches (the signs it depends
+        /// on vary from ray to ray, and mispredicted branches cost more
+        /// than the arithmetic); it is `next_up`/`next_down` to the bit.
         #[inline]
         pub fn offset_origin(point: V3, error: V3, normal: V3, direction: V3) -> V3 {
             let d = normal.abs().dot(error);
-            let mut offset = normal * d;
-            if direction.dot(normal) < 0.0 {
-                offset = -offset;
+            let d = if direction.dot(normal) < 0.0 { -d } else { d };
+            let offset = normal * d;
+            let origin = point + offset;
+            V3::new(
+                away(origin.x, offset.x),
+                away(origin.y, offset.y),
+                away(origin.z, offset.z),
+            )
+        }
+
+        /// `x.next_up()` for `offset` > 0, `x.next_down()` for `offset` < 0,
+        /// `x` otherwise, without branches: for finite non-zero `x` one step
+        /// of the bit pattern (up in magnitude when `x` and `offset` have
+        /// the same sign, down otherwise); ±0 steps to the smallest
+        /// subnormal of the offset's sign; an infinity stays where the
+        /// step would leave the numbers, and NaN stays NaN.
+        #[inline(always)]
+        pub(crate) fn away(x: Real, offset: Real) -> Real {
+            let bits = x.to_bits();
+            let outward = x.is_sign_negative() == offset.is_sign_negative();
+            let stepped = Real::from_bits(if outward {
+                bits.wrapping_add(1)
+            } else {
+                bits.wrapping_sub(1)
+            });
+            let moved = if x.is_nan() | stepped.is_nan() { x } else { stepped };
+            let moved = if x == 0.0 {
+                Real::from_bits(1).copysign(offset)
+            } else {
+                moved
+            };
+            if (offset == 0.0) | offset.is_nan() {
+                x
+            } else {
+                moved
             }
-            let mut origin = point + offset;
-            for i in 0..3 {
-                if offset[i] > 0.0 {
-                    origin[i] = origin[i].next_up();
-                } else if offset[i] < 0.0 {
-                    origin[i] = origin[i].next_down();
-                }
-            }
-            origin
         }
 
         /// Ray intersection, implemented by every shape.
@@ -297,6 +324,69 @@ crate::both_precisions!(ray_impl);
 mod tests {
     use super::f64::{gamma, offset_origin};
     use glam::DVec3;
+
+    #[test]
+    fn the_branch_free_step_is_next_up_and_next_down() {
+        let xs = [
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            5e-324,
+            -5e-324,
+            1.0,
+            -1.0,
+            0.3,
+            -7.5e200,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+            f64::from_bits(0x7ff0_0000_0000_0001),
+        ];
+        let offsets = [
+            1e-300,
+            -1e-300,
+            5e-324,
+            -5e-324,
+            0.0,
+            -0.0,
+            2.0,
+            -2.0,
+            f64::NAN,
+        ];
+        for x in xs {
+            for o in offsets {
+                let want = if o > 0.0 {
+                    x.next_up()
+                } else if o < 0.0 {
+                    x.next_down()
+                } else {
+                    x
+                };
+                let got = super::f64::away(x, o);
+                assert!(
+                    got.to_bits() == want.to_bits() || got.is_nan() && want.is_nan(),
+                    "{x:e} {o:e}: {got:e} vs {want:e}"
+                );
+                let (x, o) = (x as f32, o as f32);
+                let want = if o > 0.0 {
+                    x.next_up()
+                } else if o < 0.0 {
+                    x.next_down()
+                } else {
+                    x
+                };
+                let got = super::f32::away(x, o);
+                assert!(
+                    got.to_bits() == want.to_bits() || got.is_nan() && want.is_nan(),
+                    "{x:e} {o:e}: {got:e} vs {want:e}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn gamma_bounds_n_roundings() {
