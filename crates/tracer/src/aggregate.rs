@@ -211,7 +211,8 @@ impl Aggregate {
 
     /// [`Aggregate::occluded`] for every ray of a batch: sets `blocked[i]`
     /// when anything is hit along ray i before `t_max[i]` (rays already
-    /// blocked stay so).
+    /// blocked stay so). A ray with `t_max[i]` ≤ 0 or NaN is never blocked
+    /// (a caller switches rays off that way).
     ///
     /// # Panics
     /// If `t_max` or `blocked` is not as long as `rays`.
@@ -224,7 +225,8 @@ impl Aggregate {
         match &self.bvh {
             Some(bvh) => {
                 for i in 0..rays.len() {
-                    if !blocked[i] {
+                    // Nothing lies at 0 < t < t_max ≤ 0 (or NaN).
+                    if !blocked[i] && t_max[i] > 0.0 {
                         let ray = rays.get(i);
                         let hits = |k: usize, t: f64| {
                             self.bounded[k].shape.hit_distance(&ray, t).is_some()
