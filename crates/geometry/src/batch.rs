@@ -113,25 +113,6 @@ macro_rules! batch_impl {
                 }
             }
 
-            /// Makes the batch `n` rays long: rays are dropped from the end,
-            /// or zero rays (origin and direction 0) appended, for a caller
-            /// that writes the coordinates itself ([`RayBatch::lanes_mut`]).
-            #[inline]
-            pub fn resize(&mut self, n: usize) {
-                for v in self.origin.iter_mut().chain(&mut self.direction) {
-                    v.resize(n, 0.0);
-                }
-            }
-
-            /// The x, y and z arrays of the origins and of the directions,
-            /// writable.
-            #[inline]
-            pub fn lanes_mut(&mut self) -> ([&mut [Real]; 3], [&mut [Real]; 3]) {
-                let [ox, oy, oz] = &mut self.origin;
-                let [dx, dy, dz] = &mut self.direction;
-                ([ox, oy, oz], [dx, dy, dz])
-            }
-
             /// Ray `i`.
             ///
             /// # Panics

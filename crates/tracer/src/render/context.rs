@@ -7,7 +7,7 @@ use std::cell::Cell;
 use glam::DVec3;
 use lambert_estimator::point::{estimate_at, stream_seed, PointEstimate};
 use lambert_geometry::f64::Hit;
-use lambert_light::emitter::{DirectionalLight, Emitter, PointLight};
+use lambert_light::emitter::Emitter;
 use lambert_light::Receiver;
 
 use super::RenderConfig;
@@ -97,44 +97,25 @@ impl DeltaLight {
     /// counts, after its shadow ray, unless `cos` ≤ 0.
     #[inline]
     pub fn seen_from(e: &Emitter, point: DVec3, n: DVec3) -> Option<DeltaLight> {
-        match e {
+        let (direction, distance, scale) = match e {
             Emitter::Point(p) => {
-                let (light, apart) = DeltaLight::point(p, point, n);
-                apart.then_some(light)
+                let v = p.position - point;
+                let r2 = v.length_squared();
+                if !(r2 > 0.0) {
+                    return None;
+                }
+                let r = r2.sqrt();
+                (v / r, r, p.intensity / r2)
             }
-            Emitter::Directional(d) => Some(DeltaLight::directional(d, n)),
-            _ => None,
-        }
-    }
-
-    /// Point light `p` seen from `point` with unit normal `n`, and whether
-    /// the light is apart from the point (r² > 0; otherwise the values are
-    /// not numbers and the light does not count). No branch: the
-    /// wavefront tracer computes it for many points at once.
-    #[inline(always)]
-    pub fn point(p: &PointLight, point: DVec3, n: DVec3) -> (DeltaLight, bool) {
-        let v = p.position - point;
-        let r2 = v.length_squared();
-        let r = r2.sqrt();
-        let direction = v / r;
-        let light = DeltaLight {
-            direction,
-            distance: r,
-            scale: p.intensity / r2,
-            cos: n.dot(direction),
+            Emitter::Directional(d) => (d.direction, f64::INFINITY, d.irradiance),
+            _ => return None,
         };
-        (light, r2 > 0.0)
-    }
-
-    /// Directional light `d` seen by a surface with unit normal `n`.
-    #[inline(always)]
-    pub fn directional(d: &DirectionalLight, n: DVec3) -> DeltaLight {
-        DeltaLight {
-            direction: d.direction,
-            distance: f64::INFINITY,
-            scale: d.irradiance,
-            cos: n.dot(d.direction),
-        }
+        Some(DeltaLight {
+            direction,
+            distance,
+            scale,
+            cos: n.dot(direction),
+        })
     }
 }
 

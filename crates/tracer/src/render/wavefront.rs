@@ -1,54 +1,40 @@
 //! Whitted tracing a tile at a time, generation by generation: the camera
 //! rays of every pixel of the tile, then all their reflected and refracted
-//! rays, and so on (Laine, Karras & Aila, "Megakernels considered harmful:
+//! rays, and so on, each generation's nearest hits and shadow rays tested
+//! as one batch (Laine, Karras & Aila, "Megakernels considered harmful:
 //! wavefront path tracing on GPUs", HPG 2013, for the organisation).
 //!
-//! A generation is held in structure-of-arrays form (one array per
-//! coordinate) and most of its work runs as loops over those arrays whose
-//! bodies have no branch, which the compiler vectorises: the nearest hits
-//! (the geometry crate's `nearest_in_batch`, shape by shape), the hit
-//! records, the shadow rays toward each delta light and their test
-//! (`occludes_in_batch`), the direct irradiance, and the reflected and
-//! refracted rays with their Fresnel weights. They are compiled for the
-//! widest instruction set the processor has ([`Isa`]). What remains per
-//! ray is a short pass of decisions: the material's case, the texture, the
-//! highlights, which children to follow.
+//! A batch is tested shape by shape in loops the compiler vectorises (the
+//! geometry crate's `nearest_in_batch` and `occludes_in_batch`), compiled
+//! for the widest instruction set the processor has
+//! ([`lambert_sampling::isa::Isa`]); a scene with a BVH is searched ray by
+//! ray inside the same batches.
 //!
-//! **The image is the recursive tracer's, to the bit.** Every value is
-//! computed by the same functions with the same operations in the same
-//! order (a loop computes a value for every ray and keeps it only where the
-//! recursive tracer would have computed it, which changes nothing for the
-//! rays it is kept for); vectorising changes how many rays an instruction
-//! works on, not what it computes for each. The recursion computes a hit's
-//! radiance as `c = base + w₁·L(child₁) + w₂·L(child₂)` after its children
-//! return; here every hit becomes a node holding its base colour, its
-//! weights and its children's indices, and once the deepest generation is
-//! done the nodes are combined from the last to the first (children always
-//! come after their parent), each by that same expression. Scenes with area
-//! emitters, whose per-pixel estimates draw seeds in the recursion's order,
-//! are traced by the recursive tracer.
+//! **The image is the recursive tracer's, to the bit.** Each ray is shaded
+//! by the same functions in the same order of operations; what changes is
+//! when. The recursion computes a hit's radiance as
+//! `c = base + w₁·L(child₁) + w₂·L(child₂)` after its children return;
+//! here every hit becomes a node holding its base colour, its weights and
+//! its children's indices, and once the deepest generation is done the
+//! nodes are combined from the last to the first (children always come
+//! after their parent), each by that same expression. Scenes with area
+//! emitters, whose per-pixel estimates draw seeds in the recursion's
+//! order, are traced by the recursive tracer.
 
 use glam::DVec3;
-use lambert_geometry::f64::{offset_origin, Hit, Intersect, Ray, RayBatch};
-use lambert_light::emitter::Emitter;
+use lambert_geometry::f64::{Hit, Ray, RayBatch};
 use lambert_sampling::isa::Isa;
 
 use super::context::{DeltaLight, Direct, RayCounts};
 use super::{Pixel, RenderConfig};
-use crate::aggregate::Aggregate;
 use crate::camera::Camera;
 use crate::color::Rgb;
 use crate::material::Surface;
 use crate::optics::{fresnel_dielectric, reflect, refract};
 use crate::scene::Scene;
-use crate::shape::Shape;
 
 /// No primitive, no child.
 const NONE: u32 = u32::MAX;
-
-/// Above this many primitives, hit records are built ray by ray (one
-/// vectorised loop per primitive over all rays would cost more).
-const RECORDS_BY_PRIMITIVE: usize = 8;
 
 /// How a node's radiance combines its base colour with its children's.
 #[derive(Clone, Copy, Debug)]
@@ -80,110 +66,36 @@ impl Node {
     }
 }
 
-/// A 3-vector per ray: x, y and z arrays.
-#[derive(Clone, Debug, Default)]
-struct Lanes3 {
-    x: Vec<f64>,
-    y: Vec<f64>,
-    z: Vec<f64>,
+/// A hit of the current generation, between its shadow rays and its
+/// shading.
+#[derive(Clone, Copy, Debug)]
+struct Pending {
+    /// Its ray's index in the generation.
+    ray: u32,
+    /// Its delta lights with cos > 0 (or NaN): `lights[first..end]`, one
+    /// shadow ray each, in the scene's order of emitters.
+    first: u32,
+    end: u32,
+    hit: Hit,
 }
 
-impl Lanes3 {
-    /// `n` zero vectors.
-    fn reset(&mut self, n: usize) {
-        for v in [&mut self.x, &mut self.y, &mut self.z] {
-            v.clear();
-            v.resize(n, 0.0);
-        }
-    }
-
-    /// The first `n` lanes, as slices the loops index without checks.
-    #[inline(always)]
-    fn view(&self, n: usize) -> View3<'_> {
-        View3(&self.x[..n], &self.y[..n], &self.z[..n])
-    }
-
-    /// The first `n` lanes, writable.
-    #[inline(always)]
-    fn view_mut(&mut self, n: usize) -> ViewMut3<'_> {
-        ViewMut3(&mut self.x[..n], &mut self.y[..n], &mut self.z[..n])
-    }
-
-    #[inline(always)]
-    fn get(&self, i: usize) -> DVec3 {
-        DVec3::new(self.x[i], self.y[i], self.z[i])
-    }
-}
-
-/// Read-only lanes of 3-vectors.
-#[derive(Clone, Copy)]
-struct View3<'a>(&'a [f64], &'a [f64], &'a [f64]);
-
-impl View3<'_> {
-    #[inline(always)]
-    fn at(&self, i: usize) -> DVec3 {
-        DVec3::new(self.0[i], self.1[i], self.2[i])
-    }
-}
-
-/// Writable lanes of 3-vectors.
-struct ViewMut3<'a>(&'a mut [f64], &'a mut [f64], &'a mut [f64]);
-
-impl ViewMut3<'_> {
-    /// Lane i becomes `v` where `keep` is false.
-    #[inline(always)]
-    fn set_where(&mut self, i: usize, put: bool, v: DVec3) {
-        self.0[i] = if put { v.x } else { self.0[i] };
-        self.1[i] = if put { v.y } else { self.1[i] };
-        self.2[i] = if put { v.z } else { self.2[i] };
-    }
-
-    #[inline(always)]
-    fn set(&mut self, i: usize, v: DVec3) {
-        self.0[i] = v.x;
-        self.1[i] = v.y;
-        self.2[i] = v.z;
-    }
-}
-
-/// What a thread reuses from tile to tile: the generation being traced and
-/// everything computed for it, one entry per ray.
+/// What a thread reuses from tile to tile.
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
+    /// The generation being traced, its nodes, and the same rays in
+    /// structure-of-arrays form for the batch tests.
     rays: Vec<Ray>,
     ray_nodes: Vec<u32>,
     batch: RayBatch,
-    nearest: Vec<f64>,
-    ids: Vec<u32>,
-    // Hit records.
-    point: Lanes3,
-    normal: Lanes3,
-    error: Lanes3,
-    facing: Lanes3,
-    front: Vec<bool>,
-    // Per ray: whether its material takes direct light, and the relative
-    // index of refraction η_i/η_t (dielectrics; 1 for the rest).
-    lit: Vec<bool>,
-    eta: Vec<f64>,
-    // The shadow rays toward one delta light.
-    shadow: RayBatch,
-    shadow_t_max: Vec<f64>,
-    light_e: Vec<f64>,
-    active: Vec<bool>,
-    blocked: Vec<bool>,
-    // Direct light.
-    irradiance: Vec<f64>,
-    highlight: Vec<Rgb>,
-    // Children.
-    reflected: Lanes3,
-    reflected_origin: Lanes3,
-    refracted: Lanes3,
-    refracted_origin: Lanes3,
-    refracts: Vec<bool>,
-    fresnel: Vec<f64>,
-    // The tree.
     next_rays: Vec<Ray>,
     next_nodes: Vec<u32>,
+    nearest: Vec<f64>,
+    ids: Vec<u32>,
+    pending: Vec<Pending>,
+    shadow: Vec<Ray>,
+    shadow_t_max: Vec<f64>,
+    blocked: Vec<bool>,
+    lights: Vec<DeltaLight>,
     nodes: Vec<Node>,
     first_irradiance: Vec<f64>,
 }
@@ -223,10 +135,7 @@ pub(super) fn tile(
     s.first_irradiance.resize(pixels, 0.0);
     let mut depth = 0;
     while !s.rays.is_empty() {
-        isa.run(
-            #[inline(always)]
-            || generation(scene, config, depth, s, &mut counts),
-        );
+        generation(scene, config, isa, depth, s, &mut counts);
         std::mem::swap(&mut s.rays, &mut s.next_rays);
         std::mem::swap(&mut s.ray_nodes, &mut s.next_nodes);
         counts.secondary += s.rays.len() as u64;
@@ -267,10 +176,10 @@ pub(super) fn tile(
 /// Traces the generation `s.rays` (at recursion `depth`): nearest hits,
 /// shadow rays, shading; their reflected and refracted rays go to
 /// `s.next_rays`.
-#[inline(always)]
 fn generation(
     scene: &Scene,
     config: &RenderConfig,
+    isa: Isa,
     depth: u32,
     s: &mut Scratch,
     counts: &mut RayCounts,
@@ -282,300 +191,89 @@ fn generation(
     s.nearest.resize(n, f64::INFINITY);
     s.ids.clear();
     s.ids.resize(n, NONE);
-    aggregate.nearest_in_batch(&s.batch, &mut s.nearest, &mut s.ids);
-    records(aggregate, s);
-    materials(scene, s);
-    s.irradiance.clear();
-    s.irradiance.resize(n, 0.0);
-    s.highlight.clear();
-    s.highlight.resize(n, Rgb::BLACK);
-    for e in scene.emitters() {
-        counts.shadow += match e {
-            Emitter::Point(p) => delta_light(scene, s, |at, n| DeltaLight::point(p, at, n)),
-            Emitter::Directional(d) => {
-                delta_light(scene, s, |_, n| (DeltaLight::directional(d, n), true))
-            }
-            _ => 0,
-        };
-    }
-    if depth < config.max_depth {
-        children(s);
-    }
-    shade(scene, config, depth, s);
-}
-
-/// The hit records (point, geometric normal, error bound) of the rays that
-/// hit something, which side of the surface each arrived on, and the
-/// normal facing it. Rays that hit nothing get unused values.
-#[inline(always)]
-fn records(aggregate: &Aggregate, s: &mut Scratch) {
-    let n = s.rays.len();
-    for lanes in [&mut s.point, &mut s.normal, &mut s.error, &mut s.facing] {
-        lanes.reset(n);
-    }
-    if aggregate.len() <= RECORDS_BY_PRIMITIVE {
-        for k in 0..aggregate.len() as u32 {
-            match &aggregate.primitive(k).shape {
-                Shape::Sphere(shape) => records_of(shape, k, s),
-                Shape::Plane(shape) => records_of(shape, k, s),
-                Shape::Disk(shape) => records_of(shape, k, s),
-                Shape::Parallelogram(shape) => records_of(shape, k, s),
-                // Their records repeat the test, with branches: ray by ray.
-                Shape::Triangle(_) | Shape::Polygon(_) => one_by_one(aggregate, Some(k), s),
-            }
-        }
-    } else {
-        one_by_one(aggregate, None, s);
-    }
-    let rays = &s.rays[..n];
-    let normal = s.normal.view(n);
-    let mut facing = s.facing.view_mut(n);
-    s.front.clear();
-    s.front.resize(n, false);
-    let front = &mut s.front[..n];
-    for i in 0..n {
-        let d = rays[i].direction;
-        let hit_normal = normal.at(i);
-        // Hit::is_front and Hit::facing_normal.
-        let is_front = d.dot(hit_normal) < 0.0;
-        front[i] = is_front;
-        facing.set(i, if is_front { hit_normal } else { -hit_normal });
-    }
-}
-
-/// The records of the rays whose nearest hit is primitive `k`, a `shape`
-/// whose record has no branch: computed for every ray, kept for those.
-#[inline(always)]
-fn records_of<S: Intersect>(shape: &S, k: u32, s: &mut Scratch) {
-    let n = s.rays.len();
-    let (rays, t, ids) = (&s.rays[..n], &s.nearest[..n], &s.ids[..n]);
-    let (mut point, mut normal, mut error) = (
-        s.point.view_mut(n),
-        s.normal.view_mut(n),
-        s.error.view_mut(n),
+    isa.run(
+        #[inline(always)]
+        || aggregate.nearest_in_batch(&s.batch, &mut s.nearest, &mut s.ids),
     );
-    for i in 0..n {
-        let mine = ids[i] == k;
-        let hit = shape.hit_at(&rays[i], t[i]);
-        point.set_where(i, mine, hit.point);
-        normal.set_where(i, mine, hit.normal);
-        error.set_where(i, mine, hit.error);
-    }
-}
 
-/// The records of the rays that hit primitive `k` (or any primitive, for
-/// `None`), ray by ray.
-fn one_by_one(aggregate: &Aggregate, k: Option<u32>, s: &mut Scratch) {
-    for i in 0..s.rays.len() {
-        let id = s.ids[i];
-        if id == NONE || k.is_some_and(|k| k != id) {
-            continue;
-        }
-        let hit = aggregate
-            .primitive(id)
-            .shape
-            .hit_at(&s.rays[i], s.nearest[i]);
-        for (lanes, v) in [
-            (&mut s.point, hit.point),
-            (&mut s.normal, hit.normal),
-            (&mut s.error, hit.error),
-        ] {
-            lanes.x[i] = v.x;
-            lanes.y[i] = v.y;
-            lanes.z[i] = v.z;
-        }
-    }
-}
-
-/// Per ray, what its material asks of the vectorised passes: whether the
-/// hit takes direct light (shadow rays), and η_i/η_t for dielectrics.
-#[inline(always)]
-fn materials(scene: &Scene, s: &mut Scratch) {
-    let n = s.rays.len();
-    s.lit.clear();
-    s.lit.resize(n, false);
-    s.eta.clear();
-    s.eta.resize(n, 1.0);
-    let aggregate = scene.aggregate();
-    for i in 0..n {
-        if s.ids[i] == NONE {
-            continue;
-        }
-        let material = scene.material_of(aggregate.primitive(s.ids[i]));
-        let front = s.front[i];
-        s.lit[i] = match material.surface {
-            Surface::Emitter { .. } => false,
-            Surface::Diffuse(_) => true,
-            Surface::Mirror(_) => material.highlight.is_some(),
-            Surface::Dielectric { ior } => {
-                // Entering (front face): η_i/η_t = 1/ior; leaving: ior.
-                s.eta[i] = if front { 1.0 / ior } else { ior };
-                material.highlight.is_some() && front
-            }
-        };
-    }
-}
-
-/// The direct light of one delta light at every lit hit (as
-/// `Context::direct` adds it): a shadow ray toward it from each hit it is
-/// above, one batch test, then E += (I/r²)·cos where it is seen, and the
-/// highlight where the material has one. `light(point, n)` is the light
-/// seen from a point with normal n, and whether it counts there. Returns
-/// the shadow rays traced.
-#[inline(always)]
-fn delta_light(
-    scene: &Scene,
-    s: &mut Scratch,
-    light: impl Fn(DVec3, DVec3) -> (DeltaLight, bool),
-) -> u64 {
-    let n = s.rays.len();
-    s.shadow.resize(n);
+    // The hits, and the shadow ray toward each delta light above each.
+    s.shadow.clear();
     s.shadow_t_max.clear();
-    s.shadow_t_max.resize(n, 0.0);
-    s.light_e.clear();
-    s.light_e.resize(n, 0.0);
-    s.active.clear();
-    s.active.resize(n, false);
-    {
-        let (point, normal, error, facing) = (
-            s.point.view(n),
-            s.normal.view(n),
-            s.error.view(n),
-            s.facing.view(n),
-        );
-        let (ids, lit) = (&s.ids[..n], &s.lit[..n]);
-        let ([ox, oy, oz], [dx, dy, dz]) = s.shadow.lanes_mut();
-        let mut origin = ViewMut3(&mut ox[..n], &mut oy[..n], &mut oz[..n]);
-        let mut direction = ViewMut3(&mut dx[..n], &mut dy[..n], &mut dz[..n]);
-        let (t_max, light_e, active) = (
-            &mut s.shadow_t_max[..n],
-            &mut s.light_e[..n],
-            &mut s.active[..n],
-        );
-        for i in 0..n {
-            let p = point.at(i);
-            let (light, counts) = light(p, facing.at(i));
-            let hit = Hit {
-                distance: 0.0,
-                point: p,
-                normal: normal.at(i),
-                error: error.at(i),
-                uv: glam::DVec2::ZERO,
-            };
-            let (ray, limit) = Scene::shadow_ray(&hit, light.direction, light.distance);
-            // Context::direct: a shadow ray unless cos ≤ 0.
-            let on = (ids[i] != NONE) & lit[i] & counts & !(light.cos <= 0.0);
-            active[i] = on;
-            t_max[i] = if on { limit } else { 0.0 };
-            origin.set(i, ray.origin);
-            direction.set(i, light.direction);
-            light_e[i] = light.scale * light.cos;
-        }
-    }
-    s.blocked.clear();
-    s.blocked.resize(n, false);
-    let aggregate = scene.aggregate();
-    aggregate.occludes_in_batch(&s.shadow, &s.shadow_t_max, &mut s.blocked);
-    let mut traced = 0;
-    let [dx, dy, dz] = s.shadow.directions();
-    for i in 0..n {
-        if !s.active[i] {
-            continue;
-        }
-        traced += 1;
-        if s.blocked[i] {
-            continue;
-        }
-        // Direct::add, with the light already seen.
-        s.irradiance[i] += s.light_e[i];
-        let material = scene.material_of(aggregate.primitive(s.ids[i]));
-        if let Some(h) = &material.highlight {
-            let wo = -s.rays[i].direction;
-            let half = (DVec3::new(dx[i], dy[i], dz[i]) + wo).normalize_or_zero();
-            s.highlight[i] += h.brdf(s.facing.get(i).dot(half)) * s.light_e[i];
-        }
-    }
-    traced
-}
-
-/// For every hit, the reflected ray, and for dielectrics the refracted ray
-/// (when there is one) and the Fresnel reflectance, as the recursive tracer
-/// computes them; the shading pass keeps those its materials follow.
-#[inline(always)]
-fn children(s: &mut Scratch) {
-    let n = s.rays.len();
-    for lanes in [
-        &mut s.reflected,
-        &mut s.reflected_origin,
-        &mut s.refracted,
-        &mut s.refracted_origin,
-    ] {
-        lanes.reset(n);
-    }
-    s.fresnel.clear();
-    s.fresnel.resize(n, 0.0);
-    s.refracts.clear();
-    s.refracts.resize(n, false);
-    let (point, normal, error, facing) = (
-        s.point.view(n),
-        s.normal.view(n),
-        s.error.view(n),
-        s.facing.view(n),
-    );
-    let (rays, eta) = (&s.rays[..n], &s.eta[..n]);
-    let (mut reflected, mut reflected_origin) =
-        (s.reflected.view_mut(n), s.reflected_origin.view_mut(n));
-    let (mut refracted, mut refracted_origin) =
-        (s.refracted.view_mut(n), s.refracted_origin.view_mut(n));
-    let (fresnel, refracts) = (&mut s.fresnel[..n], &mut s.refracts[..n]);
-    for i in 0..n {
-        let d = rays[i].direction;
-        let nf = facing.at(i);
-        let (p, e, ng) = (point.at(i), error.at(i), normal.at(i));
-        let r = reflect(d, nf);
-        reflected.set(i, r);
-        reflected_origin.set(i, offset_origin(p, e, ng, r));
-        let f = fresnel_dielectric((-d).dot(nf), eta[i]);
-        fresnel[i] = f;
-        let (t, has) = match refract(d, nf, eta[i]) {
-            Some((t, _)) => (t, true),
-            None => (DVec3::ZERO, false),
-        };
-        refracts[i] = has & (f < 1.0);
-        refracted.set(i, t);
-        refracted_origin.set(i, offset_origin(p, e, ng, t));
-    }
-}
-
-/// The decisions, ray by ray: each ray's node (leaf radiance, or base
-/// colour, weights and children), the first hit's irradiance, and the next
-/// generation.
-#[inline(always)]
-fn shade(scene: &Scene, config: &RenderConfig, depth: u32, s: &mut Scratch) {
-    s.next_rays.clear();
-    s.next_nodes.clear();
-    let deeper = depth < config.max_depth;
-    let aggregate = scene.aggregate();
-    for i in 0..s.rays.len() {
-        let ray = &s.rays[i];
-        let node_index = s.ray_nodes[i] as usize;
+    s.lights.clear();
+    s.pending.clear();
+    for (i, ray) in s.rays.iter().enumerate() {
         if s.ids[i] == NONE {
-            s.nodes[node_index] = Node::leaf(scene.escaped(ray.direction));
+            s.nodes[s.ray_nodes[i] as usize] = Node::leaf(scene.escaped(ray.direction));
             continue;
         }
         let primitive = aggregate.primitive(s.ids[i]);
+        let hit = primitive.shape.hit_at(ray, s.nearest[i]);
         let material = scene.material_of(primitive);
-        let front = s.front[i];
-        let highlight = material.highlight.is_some();
-        let direct = Direct {
-            irradiance: s.irradiance[i],
-            std_error: 0.0,
-            highlight: s.highlight[i],
+        let front = hit.is_front(ray.direction);
+        let lit = match material.surface {
+            Surface::Emitter { .. } => false,
+            Surface::Diffuse(_) => true,
+            Surface::Mirror(_) => material.highlight.is_some(),
+            Surface::Dielectric { .. } => material.highlight.is_some() && front,
         };
-        let mut follow = |direction: DVec3, origin: DVec3| -> u32 {
+        let first = s.lights.len();
+        if lit {
+            let normal = hit.facing_normal(ray.direction);
+            for e in scene.emitters() {
+                let Some(light) = DeltaLight::seen_from(e, hit.point, normal) else {
+                    continue;
+                };
+                if light.cos <= 0.0 {
+                    continue;
+                }
+                let (shadow, t_max) = Scene::shadow_ray(&hit, light.direction, light.distance);
+                s.shadow.push(shadow);
+                s.shadow_t_max.push(t_max);
+                s.lights.push(light);
+            }
+        }
+        s.pending.push(Pending {
+            ray: i as u32,
+            first: first as u32,
+            end: s.lights.len() as u32,
+            hit,
+        });
+    }
+    s.batch.assign(&s.shadow);
+    s.blocked.clear();
+    s.blocked.resize(s.shadow.len(), false);
+    isa.run(
+        #[inline(always)]
+        || aggregate.occludes_in_batch(&s.batch, &s.shadow_t_max, &mut s.blocked),
+    );
+    counts.shadow += s.shadow.len() as u64;
+
+    // Shading, and the next generation.
+    s.next_rays.clear();
+    s.next_nodes.clear();
+    let deeper = depth < config.max_depth;
+    for p in &s.pending {
+        let i = p.ray as usize;
+        let ray = &s.rays[i];
+        let node_index = s.ray_nodes[i] as usize;
+        let primitive = aggregate.primitive(s.ids[i]);
+        let material = scene.material_of(primitive);
+        let d = ray.direction;
+        let front = p.hit.is_front(d);
+        let normal = p.hit.facing_normal(d);
+        let wo = -d;
+        let highlight = material.highlight.as_ref();
+        let mut direct = Direct::default();
+        let lights = p.first as usize..p.end as usize;
+        for (light, &blocked) in s.lights[lights.clone()].iter().zip(&s.blocked[lights]) {
+            if !blocked {
+                direct.add(light, normal, wo, highlight);
+            }
+        }
+        let mut follow = |direction: DVec3| -> u32 {
             let child = s.nodes.len() as u32;
             s.nodes.push(Node::leaf(Rgb::BLACK));
-            s.next_rays.push(Ray::new(origin, direction));
+            s.next_rays.push(p.hit.spawn_ray(direction));
             s.next_nodes.push(child);
             child
         };
@@ -589,17 +287,17 @@ fn shade(scene: &Scene, config: &RenderConfig, depth: u32, s: &mut Scratch) {
                     s.first_irradiance[node_index] = direct.irradiance;
                 }
                 let albedo =
-                    texture.at_lazy(|| primitive.shape.surface_parameters(ray, s.nearest[i]));
+                    texture.at_lazy(|| primitive.shape.surface_parameters(ray, p.hit.distance));
                 Node::leaf(albedo * (direct.irradiance / std::f64::consts::PI) + direct.highlight)
             }
             Surface::Mirror(reflectance) => {
-                let base = if highlight {
+                let base = if highlight.is_some() {
                     direct.highlight
                 } else {
                     Rgb::BLACK
                 };
                 let reflected = if deeper {
-                    follow(s.reflected.get(i), s.reflected_origin.get(i))
+                    follow(reflect(d, normal))
                 } else {
                     NONE
                 };
@@ -609,8 +307,10 @@ fn shade(scene: &Scene, config: &RenderConfig, depth: u32, s: &mut Scratch) {
                     children: [reflected, NONE],
                 }
             }
-            Surface::Dielectric { .. } => {
-                let base = if highlight && front {
+            Surface::Dielectric { ior } => {
+                // Entering (front face): η_i/η_t = 1/ior; leaving: ior.
+                let eta = if front { 1.0 / ior } else { ior };
+                let base = if highlight.is_some() && front {
                     direct.highlight
                 } else {
                     Rgb::BLACK
@@ -618,10 +318,12 @@ fn shade(scene: &Scene, config: &RenderConfig, depth: u32, s: &mut Scratch) {
                 let mut children = [NONE; 2];
                 let mut fresnel = 0.0;
                 if deeper {
-                    fresnel = s.fresnel[i];
-                    children[0] = follow(s.reflected.get(i), s.reflected_origin.get(i));
-                    if s.refracts[i] {
-                        children[1] = follow(s.refracted.get(i), s.refracted_origin.get(i));
+                    fresnel = fresnel_dielectric(wo.dot(normal), eta);
+                    children[0] = follow(reflect(d, normal));
+                    if fresnel < 1.0 {
+                        if let Some((t, _)) = refract(d, normal, eta) {
+                            children[1] = follow(t);
+                        }
                     }
                 }
                 Node {
