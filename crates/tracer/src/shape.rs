@@ -95,7 +95,7 @@ impl Shape {
     /// The record of the hit at `t`, a distance [`Shape::hit_distance`]
     /// returned, with the surface parameters left at zero (see
     /// `lambert_geometry`'s `Intersect::hit_at`).
-    #[inline]
+    #[inline(always)]
     pub fn hit_at(&self, ray: &Ray, t: f64) -> Hit {
         match self {
             Shape::Sphere(s) => s.hit_at(ray, t),
