@@ -250,8 +250,11 @@ fn soa_batches(c: &mut Criterion) {
             for isa in Isa::available() {
                 g.bench_function(format!("{} {isa}", $name), |b| {
                     let (mut $ux, mut $uy) = (vec![0.0 as $real; n], vec![0.0 as $real; n]);
-                    let (mut $wx, mut $wy, mut $wz) =
-                        (vec![0.0 as $real; n], vec![0.0 as $real; n], vec![0.0 as $real; n]);
+                    let (mut $wx, mut $wy, mut $wz) = (
+                        vec![0.0 as $real; n],
+                        vec![0.0 as $real; n],
+                        vec![0.0 as $real; n],
+                    );
                     let mut first = 0u64;
                     b.iter(|| {
                         isa.run(|| {
@@ -265,23 +268,46 @@ fn soa_batches(c: &mut Criterion) {
             }
         };
     }
-    soa!("cosine hemisphere f32", f32, fill_2d_f32, |ux, uy, wx, wy, wz| {
-        s32::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-    });
-    soa!("cosine hemisphere f64", f64, fill_2d, |ux, uy, wx, wy, wz| {
-        s64::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-    });
-    soa!("uniform hemisphere f32", f32, fill_2d_f32, |ux, uy, wx, wy, wz| {
-        s32::sample_uniform_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-    });
-    soa!("uniform sphere f32", f32, fill_2d_f32, |ux, uy, wx, wy, wz| {
-        s32::sample_uniform_sphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-    });
+    soa!(
+        "cosine hemisphere f32",
+        f32,
+        fill_2d_f32,
+        |ux, uy, wx, wy, wz| {
+            s32::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+        }
+    );
+    soa!(
+        "cosine hemisphere f64",
+        f64,
+        fill_2d,
+        |ux, uy, wx, wy, wz| {
+            s64::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+        }
+    );
+    soa!(
+        "uniform hemisphere f32",
+        f32,
+        fill_2d_f32,
+        |ux, uy, wx, wy, wz| {
+            s32::sample_uniform_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+        }
+    );
+    soa!(
+        "uniform sphere f32",
+        f32,
+        fill_2d_f32,
+        |ux, uy, wx, wy, wz| {
+            s32::sample_uniform_sphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+        }
+    );
     let cone32 = s32::UniformCone::from_theta_max(0.3).unwrap();
     let cone64 = s64::UniformCone::from_theta_max(0.3).unwrap();
-    soa!("uniform cone f32", f32, fill_2d_f32, |ux, uy, wx, wy, wz| {
-        cone32.sample_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-    });
+    soa!(
+        "uniform cone f32",
+        f32,
+        fill_2d_f32,
+        |ux, uy, wx, wy, wz| { cone32.sample_soa(&ux, &uy, &mut wx, &mut wy, &mut wz) }
+    );
     soa!("uniform cone f64", f64, fill_2d, |ux, uy, wx, wy, wz| {
         cone64.sample_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
     });

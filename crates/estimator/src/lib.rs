@@ -6,6 +6,7 @@
 //! standard errors ([`statistics`]). Scenes, emitters and closed forms come
 //! from `lambert-light`; warps and sequences from `lambert-sampling`.
 
+pub mod chunk;
 pub mod clt;
 pub mod estimation;
 pub mod statistics;

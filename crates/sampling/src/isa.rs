@@ -137,10 +137,9 @@ impl fmt::Display for Isa {
 impl FromStr for Isa {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        Isa::ALL
-            .into_iter()
-            .find(|i| i.name() == s)
-            .ok_or_else(|| format!("unknown instruction set {s:?} (expected baseline, avx2 or avx512)"))
+        Isa::ALL.into_iter().find(|i| i.name() == s).ok_or_else(|| {
+            format!("unknown instruction set {s:?} (expected baseline, avx2 or avx512)")
+        })
     }
 }
 
@@ -179,7 +178,9 @@ mod tests {
         for isa in Isa::available() {
             let got = isa.run(|| kernel(&xs));
             assert!(
-                got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits()),
+                got.iter()
+                    .zip(&want)
+                    .all(|(a, b)| a.to_bits() == b.to_bits()),
                 "{isa}"
             );
         }

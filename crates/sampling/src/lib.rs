@@ -66,8 +66,8 @@ macro_rules! public_api {
         pub use crate::hemisphere::$p::{
             invert_cosine_hemisphere, invert_uniform_hemisphere, pdf_cosine_hemisphere,
             pdf_uniform_hemisphere, sample_cosine_hemisphere, sample_cosine_hemisphere_batch,
-            sample_cosine_hemisphere_soa, sample_uniform_hemisphere, sample_uniform_hemisphere_batch,
-            sample_uniform_hemisphere_soa,
+            sample_cosine_hemisphere_soa, sample_uniform_hemisphere,
+            sample_uniform_hemisphere_batch, sample_uniform_hemisphere_soa,
         };
         pub use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
         pub use crate::light_sampler::$p::{seen_from, LightSampler};

@@ -15,7 +15,12 @@ pub(crate) fn map2_to3<R: Copy, V2, V3: Into<[R; 3]>>(
 ) where
     V2: From<[R; 2]>,
 {
-    let n = ux.len().min(uy.len()).min(wx.len()).min(wy.len()).min(wz.len());
+    let n = ux
+        .len()
+        .min(uy.len())
+        .min(wx.len())
+        .min(wy.len())
+        .min(wz.len());
     let (ux, uy) = (&ux[..n], &uy[..n]);
     let (wx, wy, wz) = (&mut wx[..n], &mut wy[..n], &mut wz[..n]);
     for i in 0..n {

@@ -19,10 +19,12 @@
 //! dimensions of the sequence, and the sample's value is the sum of the
 //! per-emitter estimates: unbiased, since each term is.
 
+mod batch;
 mod emitter_area;
 mod emitter_light;
 mod prepared;
 
+pub use batch::BatchHits;
 pub use emitter_area::EmitterArea;
 pub use emitter_light::{EmitterLight, LightDirection};
 pub use prepared::PreparedEmitter;

@@ -20,8 +20,8 @@ pub struct PreparedEmitter {
     pub emitter: Emitter,
     /// The technique used for it.
     pub technique: Technique,
-    light: EmitterLight,
-    area: EmitterArea,
+    pub(super) light: EmitterLight,
+    pub(super) area: EmitterArea,
 }
 
 impl PreparedEmitter {
@@ -52,7 +52,7 @@ impl PreparedEmitter {
 
     /// The emitter's radiance when every light sample sees it
     /// ([`EmitterLight::always_hits`]).
-    fn uniform_radiance(&self) -> f64 {
+    pub(super) fn uniform_radiance(&self) -> f64 {
         match &self.emitter {
             Emitter::Sphere(s) => s.radiance,
             Emitter::SkyCap(c) => c.radiance,

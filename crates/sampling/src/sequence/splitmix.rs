@@ -52,9 +52,7 @@ impl SplitMix64 {
     /// The stream whose state before output 0 is `mix64(seed)` (a
     /// scrambled seed, so that nearby seeds start far apart).
     pub fn new(seed: u64) -> Self {
-        SplitMix64 {
-            state: mix64(seed),
-        }
+        SplitMix64 { state: mix64(seed) }
     }
 
     /// Output number `index` (64 bits).
