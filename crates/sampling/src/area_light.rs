@@ -62,6 +62,12 @@ macro_rules! area_light_impl {
             pub fn new(sphere: Sphere) -> Self {
                 SphereAreaSampler { sphere }
             }
+
+            /// The sphere.
+            #[inline]
+            pub fn sphere(&self) -> &Sphere {
+                &self.sphere
+            }
         }
 
         impl LightSampler for SphereAreaSampler {
@@ -121,6 +127,12 @@ macro_rules! area_light_impl {
                     area: UniformDiskArea::new(&disk),
                     disk,
                 }
+            }
+
+            /// The disk.
+            #[inline]
+            pub fn disk(&self) -> &Disk {
+                &self.disk
             }
         }
 
@@ -231,6 +243,12 @@ macro_rules! area_light_impl {
             #[inline]
             pub fn area(&self) -> Real {
                 self.cumulative.last().copied().unwrap_or(0.0)
+            }
+
+            /// The polygon.
+            #[inline]
+            pub fn polygon(&self) -> &ConvexPolygon {
+                &self.polygon
             }
         }
 

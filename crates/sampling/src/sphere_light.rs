@@ -15,6 +15,17 @@
 //! 1e6 radii away). The distance along the direction is
 //! t = (d − r)(d + r) / (d (cos θ + √(sin²θmax − sin²θ))), the near root of
 //! the ray–sphere quadratic written without cancellation.
+//!
+//! **The horizon.** The whole cone is sampled even when the shading point's
+//! horizon cuts it (a sphere straddling the receiver's plane); directions
+//! below the horizon carry cos θ ≤ 0 and score zero. Sampling only the
+//! visible part uniformly would need the inverse of its marginal CDF in θ,
+//! ∫ 2β(θ) sin θ dθ with β(θ) the half-width of the visible azimuth arc, an
+//! arccos: no closed form, so a root-finder per sample. The fraction of
+//! samples wasted is 1 − Ω_visible/Ω, which matters only when the horizon
+//! leaves a sliver; projected-solid-angle sampling of the cap handles that
+//! case exactly, and estimators that use this cone report how many of
+//! their samples saw the light.
 
 macro_rules! sphere_light_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
