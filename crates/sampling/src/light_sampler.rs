@@ -26,10 +26,9 @@ macro_rules! light_sampler_impl {
         /// use the normal to sample better.
         ///
         /// When the light straddles the horizon, the polygon and triangle
-        /// samplers ([`PolygonLightSampler`](super::PolygonLightSampler),
-        /// [`TriangleLightSampler`](super::TriangleLightSampler)) clip it
+        /// samplers (`PolygonLightSampler`, `TriangleLightSampler`) clip it
         /// and sample only its visible part. The sphere's cone
-        /// ([`SphereLightSampler`](super::SphereLightSampler)) and the area
+        /// (`SphereLightSampler`) and the area
         /// samplers do not: exact uniform sampling of a cap cut by a plane
         /// (or of a disk's circular segment by area) has no closed-form
         /// inverse — its marginal CDF is an integral of arccos terms that
