@@ -6,8 +6,8 @@
 //! standard errors ([`statistics`]). Scenes, emitters and closed forms come
 //! from `lambert-light`; warps and sequences from `lambert-sampling`.
 
-pub mod clt;
 pub mod estimation;
+pub mod interval;
 pub mod statistics;
 pub mod strategy;
 
