@@ -251,8 +251,8 @@ pub struct SampleSummary {
 pub struct HonestInterval {
     /// The standard error, never below the rounding floor.
     pub std_error: f64,
-    /// The interval's ends (the upper may be +∞ when no finite bound is
-    /// known).
+    /// The interval's ends, finite, around the estimate (the upper is
+    /// f64::MAX when the bound on a sample's value overflows).
     pub ci: (f64, f64),
     /// How it was formed.
     pub kind: IntervalKind,
@@ -404,10 +404,12 @@ pub fn honest_interval(summary: &SampleSummary, parts: &[PartTally], level: f64)
             .map(|p| p.bound.max * p.bound.hit_probability)
             .sum();
         let (lo, hi) = bounded_mean_interval(summary.sampled_mean, bound, n, alpha);
-        let hi = hi.min(known).max(lo);
+        // No mean exceeds `known`; the interval still holds the estimate.
+        let m = summary.sampled_mean;
+        let (lo, hi) = (lo.min(m), hi.min(known.max(m)));
         return HonestInterval {
             std_error,
-            ci: (lo + delta, hi + delta),
+            ci: finite((lo + delta, hi + delta), summary.mean),
             kind: IntervalKind::Bounded,
             warning,
         };
@@ -428,7 +430,7 @@ pub fn honest_interval(summary: &SampleSummary, parts: &[PartTally], level: f64)
     let negligible = moved <= NEGLIGIBLE * half_width;
     HonestInterval {
         std_error,
-        ci,
+        ci: finite(ci, summary.mean),
         kind: if negligible {
             IntervalKind::CentralLimit
         } else {
@@ -436,6 +438,19 @@ pub fn honest_interval(summary: &SampleSummary, parts: &[PartTally], level: f64)
         },
         warning: if negligible { None } else { warning },
     }
+}
+
+/// The interval with its ends made finite: an end that overflowed (a value
+/// bound beyond f64, e.g. area sampling 1e-200 m under a light) becomes
+/// f64::MAX (no finite bound) or 0, and the estimate stays inside.
+fn finite((lo, hi): (f64, f64), mean: f64) -> (f64, f64) {
+    let lo = if lo.is_finite() { lo.min(mean) } else { 0.0 };
+    let hi = if hi.is_nan() {
+        f64::MAX
+    } else {
+        hi.min(f64::MAX).max(mean)
+    };
+    (lo, hi)
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 
 pub mod analytic;
 pub mod estimate;
+pub mod finite;
 pub mod merge;
 pub mod sample;
 pub mod study;

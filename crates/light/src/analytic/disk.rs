@@ -40,7 +40,7 @@ use std::f64::consts::PI;
 
 /// A uniform disk of radiance L and radius R seen from a receiver on its
 /// axis at height h, facing it: E = Lπ sin²α with sin²α = R²/(R² + h²)
-/// (the lecture's Ω⊥ = π sin²α; closed form, no cancellation).
+/// (Ω⊥ = π sin²α; closed form, no cancellation).
 ///
 /// ```
 /// use lambert_light::analytic::disk_coaxial_irradiance;

@@ -236,7 +236,8 @@ fn build(raw: &RawEmitter) -> Result<Emitter, EmitterError> {
 pub(super) fn parse(text: &str) -> Result<Scene, SceneError> {
     let raw: RawScene =
         toml::from_str(text).map_err(|e| SceneError::new(format!("scene file: {e}")))?;
-    let receiver = Receiver::new(v3(raw.receiver.point), v3(raw.receiver.normal))?;
+    let receiver = Receiver::new(v3(raw.receiver.point), v3(raw.receiver.normal))
+        .map_err(EmitterError::from)?;
     let mut emitters = Vec::with_capacity(raw.emitters.len());
     for (i, e) in raw.emitters.iter().enumerate() {
         emitters.push(build(e).map_err(|err| err.within(&format!("emitters[{i}]")))?);
