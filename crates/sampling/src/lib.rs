@@ -31,6 +31,7 @@ mod discrete;
 mod disk;
 pub mod error;
 mod hemisphere;
+mod horizon_clip;
 pub mod isa;
 mod light_sample;
 mod light_sampler;
@@ -47,6 +48,7 @@ mod triangle_light;
 mod trig;
 
 pub use error::SamplingError;
+pub use horizon_clip::MAX_POLYGON_VERTICES;
 
 /// The public items of one precision, re-exported once (one path per item
 /// and precision).

@@ -33,7 +33,7 @@ use lambert_sampling::sequence::SampleSequence;
 pub use mcg::McgStream;
 
 use crate::statistics::Estimate;
-use crate::strategy::{BatchHits, PreparedEmitter};
+use crate::strategy::{PartHits, PreparedEmitter};
 
 /// Samples evaluated together: 512 samples' coordinates (4 arrays of f64,
 /// 16 KB) and values stay in a 48 KB first-level cache.
@@ -46,7 +46,7 @@ pub struct ChunkResult {
     /// The chunk's estimate.
     pub estimate: Estimate,
     /// Per emitter (in order), the non-zero counts of its parts.
-    pub hits: Vec<BatchHits>,
+    pub hits: Vec<PartHits>,
 }
 
 /// A worker thread's buffers, kept from chunk to chunk.
@@ -197,13 +197,32 @@ fn split(points: &[DVec2], x: &mut [f64], y: &mut [f64]) {
 mod tests {
     use super::*;
     use crate::estimation::prepare;
-    use crate::strategy::Strategy;
+    use crate::strategy::{Strategy, Technique};
     use lambert_light::builtin::builtin_scenes;
     use lambert_sampling::sequence::{Sobol, Stratified};
 
+    /// One sample's value by the one-sample path,
+    /// [`PreparedEmitter::evaluate_u`], except light sampling of a sphere,
+    /// which the estimator has always taken through its cone:
+    /// F = L Ω max(n_local·ω_local, 0).
+    fn reference_value(p: &PreparedEmitter, receiver: &Receiver, u: DVec2, u2: DVec2) -> f64 {
+        use lambert_light::emitter::Emitter;
+        use lambert_sampling::f64::SphereLightSampler;
+        if let (Technique::Light, Emitter::Sphere(e)) = (p.technique, &p.emitter) {
+            return match SphereLightSampler::new(e.sphere).at(receiver.point) {
+                Ok(s) => {
+                    let n_local = s.frame().to_local(receiver.normal);
+                    e.radiance * s.solid_angle() * n_local.dot(s.cone().sample(u)).max(0.0)
+                }
+                Err(_) => 0.0,
+            };
+        }
+        p.evaluate_u(receiver, u, u2)
+    }
+
     /// The chunk as the estimator computed it before blocks, lanes and
     /// instruction sets: the whole chunk's points from `rand_pcg`, one
-    /// emitter after the other through `evaluate_batch`.
+    /// emitter after the other, one sample at a time.
     fn reference_independent(
         prepared: &[PreparedEmitter],
         receiver: &Receiver,
@@ -227,7 +246,9 @@ mod tests {
             if p.technique.dimensions() > 1 {
                 u2.iter_mut().for_each(|x| *x = next());
             }
-            p.evaluate_batch(receiver, &u, &u2, &mut values);
+            for (k, v) in values.iter_mut().enumerate() {
+                *v += reference_value(p, receiver, u[k], u2[k]);
+            }
         }
         Estimate::from_values(&values)
     }
@@ -269,7 +290,9 @@ mod tests {
                         } else {
                             u
                         };
-                        p.evaluate_batch(&receiver, u, u2, &mut values);
+                        for (k, v) in values.iter_mut().enumerate() {
+                            *v += reference_value(p, &receiver, u[k], u2[k]);
+                        }
                         d += p.technique.dimensions();
                     }
                     Estimate::from_values(&values)

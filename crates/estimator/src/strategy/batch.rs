@@ -26,11 +26,9 @@ use lambert_sampling::f64::{
 };
 
 use super::emitter_light::{sample_cap, sample_disk, sample_polygon, sample_sky, sample_sphere};
-use super::{EmitterArea, EmitterLight, Heuristic, LightDirection, PreparedEmitter, Technique};
-
-/// How many samples of a batch had a non-zero value in each part of the
-/// estimate (part 1 is MIS's light-sampled direction; 0 otherwise).
-pub type BatchHits = [u64; 2];
+use super::{
+    EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
+};
 
 impl PreparedEmitter {
     /// Adds this emitter's estimate for samples `i` of a block to `out[i]`:
@@ -48,7 +46,7 @@ impl PreparedEmitter {
         vx: &[f64],
         vy: &[f64],
         out: &mut [f64],
-    ) -> BatchHits {
+    ) -> PartHits {
         let p = receiver.point;
         let mis = matches!(self.technique, Technique::Mis(_));
         let mut n = ux.len().min(uy.len()).min(out.len());
@@ -158,7 +156,7 @@ fn sphere_cone_batch(
     normal: DVec3,
     block: &Block<'_>,
     out: &mut [f64],
-) -> BatchHits {
+) -> PartHits {
     let scale = radiance * sphere.solid_angle();
     let cone = *sphere.cone();
     let n_local = sphere.frame().to_local(normal);
@@ -174,7 +172,7 @@ fn sphere_cone_batch(
 
 /// `out[i] += f(i)` over the block, counting the non-zero values.
 #[inline(always)]
-fn single(out: &mut [f64], f: impl Fn(usize) -> f64) -> BatchHits {
+fn single(out: &mut [f64], f: impl Fn(usize) -> f64) -> PartHits {
     let mut hits = 0u64;
     for (i, o) in out.iter_mut().enumerate() {
         let v = f(i);
@@ -197,7 +195,7 @@ fn technique_batch(
     light_pdf: impl Fn(DVec3) -> f64,
     block: &Block<'_>,
     out: &mut [f64],
-) -> BatchHits {
+) -> PartHits {
     let frame = &receiver.frame;
     let normal = receiver.normal;
     let radiance_cos = |w: DVec3| {
@@ -272,7 +270,7 @@ fn mis_batch(
     light_pdf: impl Fn(DVec3) -> f64,
     block: &Block<'_>,
     out: &mut [f64],
-) -> BatchHits {
+) -> PartHits {
     let frame = &receiver.frame;
     let mut hits = [0u64; 2];
     for (i, o) in out.iter_mut().enumerate() {
