@@ -43,11 +43,13 @@
 mod batch;
 mod emitter_area;
 mod emitter_light;
+mod occluded;
 mod prepared;
 pub mod value_bound;
 
 pub use emitter_area::EmitterArea;
 pub use emitter_light::{EmitterLight, LightDirection};
+pub use occluded::{delta_irradiance_visible, OccludedEmitter};
 pub use prepared::{PartHits, PreparedEmitter};
 pub use value_bound::{PartBound, PartShape};
 
