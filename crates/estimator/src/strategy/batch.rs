@@ -68,8 +68,11 @@ impl PreparedEmitter {
                 technique_batch(
                     self,
                     receiver,
+                    #[inline(always)]
                     |w| e.radiance_toward(p, w),
+                    #[inline(always)]
                     |u| sample_sphere(cone, u),
+                    #[inline(always)]
                     |w| cone.pdf(w),
                     &block,
                     out,
@@ -78,6 +81,7 @@ impl PreparedEmitter {
             (EmitterLight::Sky, Emitter::Sky(e)) => technique_batch(
                 self,
                 receiver,
+                #[inline(always)]
                 |_| e.radiance,
                 sample_sky,
                 pdf_uniform_sphere,
@@ -87,8 +91,11 @@ impl PreparedEmitter {
             (EmitterLight::Cap(frame, cone), Emitter::SkyCap(e)) => technique_batch(
                 self,
                 receiver,
+                #[inline(always)]
                 |w| e.radiance_toward(w),
+                #[inline(always)]
                 |u| sample_cap(frame, cone, u),
+                #[inline(always)]
                 |w| cone.pdf(frame.to_local(w)),
                 &block,
                 out,
@@ -96,8 +103,11 @@ impl PreparedEmitter {
             (EmitterLight::Polygon(poly), Emitter::Polygon(e)) => technique_batch(
                 self,
                 receiver,
+                #[inline(always)]
                 |w| e.radiance_toward(p, w),
+                #[inline(always)]
                 |u| sample_polygon(poly, u),
+                #[inline(always)]
                 |w| poly.pdf(w),
                 &block,
                 out,
@@ -105,8 +115,11 @@ impl PreparedEmitter {
             (EmitterLight::Disk(a, r), Emitter::Disk(e)) => technique_batch(
                 self,
                 receiver,
+                #[inline(always)]
                 |w| e.radiance_toward(p, w),
+                #[inline(always)]
                 |u| sample_disk(a, r, u),
+                #[inline(always)]
                 |w| a.pdf(r.point, r.normal, w),
                 &block,
                 out,
@@ -116,8 +129,11 @@ impl PreparedEmitter {
             _ => technique_batch(
                 self,
                 receiver,
+                #[inline(always)]
                 |w| self.emitter.radiance_toward(p, w),
+                #[inline(always)]
                 |_| None,
+                #[inline(always)]
                 |_| 0.0,
                 &block,
                 out,
@@ -170,6 +186,14 @@ fn sphere_cone_batch(
     [hits, 0]
 }
 
+/// `f` itself: a closure given here can carry `#[inline(always)]` (an
+/// attribute Rust accepts on a closure in argument position only), so that
+/// it is compiled into the kernel's loop and instruction set.
+#[inline(always)]
+fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
+    f
+}
+
 /// `out[i] += f(i)` over the block, counting the non-zero values.
 #[inline(always)]
 fn single(out: &mut [f64], f: impl Fn(usize) -> f64) -> PartHits {
@@ -198,52 +222,76 @@ fn technique_batch(
 ) -> PartHits {
     let frame = &receiver.frame;
     let normal = receiver.normal;
-    let radiance_cos = |w: DVec3| {
-        let cos = w.dot(normal);
-        if cos > 0.0 {
-            radiance(w) * cos
-        } else {
-            0.0
-        }
-    };
-    match emitter.technique {
-        Technique::UniformHemisphere => single(out, |i| {
-            let local = sample_uniform_hemisphere(block.u(i));
-            radiance_cos(frame.from_local(local)) / pdf_uniform_hemisphere(local)
-        }),
-        Technique::CosineHemisphere => single(out, |i| {
-            let local = sample_cosine_hemisphere(block.u(i));
-            let w = frame.from_local(local);
-            if local.z > 0.0 {
-                std::f64::consts::PI * radiance(w)
+    let radiance_cos = hoisted(
+        #[inline(always)]
+        |w: DVec3| {
+            let cos = w.dot(normal);
+            if cos > 0.0 {
+                radiance(w) * cos
             } else {
                 0.0
             }
-        }),
+        },
+    );
+    match emitter.technique {
+        Technique::UniformHemisphere => single(
+            out,
+            #[inline(always)]
+            |i| {
+                let local = sample_uniform_hemisphere(block.u(i));
+                radiance_cos(frame.from_local(local)) / pdf_uniform_hemisphere(local)
+            },
+        ),
+        Technique::CosineHemisphere => single(
+            out,
+            #[inline(always)]
+            |i| {
+                let local = sample_cosine_hemisphere(block.u(i));
+                let w = frame.from_local(local);
+                if local.z > 0.0 {
+                    std::f64::consts::PI * radiance(w)
+                } else {
+                    0.0
+                }
+            },
+        ),
         Technique::Light => {
             let always_hits = emitter.light.always_hits();
             let uniform = emitter.uniform_radiance();
-            single(out, |i| match light_sample(block.u(i)) {
-                Some(s) if always_hits => uniform * s.direction.dot(normal).max(0.0) / s.pdf,
-                Some(s) => radiance_cos(s.direction) / s.pdf,
-                None => 0.0,
-            })
+            single(
+                out,
+                #[inline(always)]
+                |i| match light_sample(block.u(i)) {
+                    Some(s) if always_hits => uniform * s.direction.dot(normal).max(0.0) / s.pdf,
+                    Some(s) => radiance_cos(s.direction) / s.pdf,
+                    None => 0.0,
+                },
+            )
         }
         Technique::Area => {
-            let through = |s: Option<lambert_sampling::f64::LightSample>| match s {
-                Some(s) => radiance_cos(s.direction) / s.pdf,
-                None => 0.0,
-            };
+            let through = hoisted(
+                #[inline(always)]
+                |s: Option<lambert_sampling::f64::LightSample>| match s {
+                    Some(s) => radiance_cos(s.direction) / s.pdf,
+                    None => 0.0,
+                },
+            );
             match &emitter.area {
-                EmitterArea::Sphere(a, r) => {
-                    single(out, |i| through(a.sample(r.point, r.normal, block.u(i))))
-                }
-                EmitterArea::Disk(a, r) => {
-                    single(out, |i| through(a.sample(r.point, r.normal, block.u(i))))
-                }
-                EmitterArea::Polygon(a, r) => {
-                    single(out, |i| through(a.sample(r.point, r.normal, block.u(i))))
-                }
+                EmitterArea::Sphere(a, r) => single(
+                    out,
+                    #[inline(always)]
+                    |i| through(a.sample(r.point, r.normal, block.u(i))),
+                ),
+                EmitterArea::Disk(a, r) => single(
+                    out,
+                    #[inline(always)]
+                    |i| through(a.sample(r.point, r.normal, block.u(i))),
+                ),
+                EmitterArea::Polygon(a, r) => single(
+                    out,
+                    #[inline(always)]
+                    |i| through(a.sample(r.point, r.normal, block.u(i))),
+                ),
                 EmitterArea::None => [0, 0],
             }
         }

@@ -134,11 +134,17 @@ pub(super) fn sample_sky(u: DVec2) -> Option<LightDirection> {
     checked(w, pdf_uniform_sphere(w))
 }
 
-/// [`EmitterLight::sample`] of a sphere: its subtended cone.
+/// [`EmitterLight::sample`] of a sphere: its subtended cone. The direction
+/// and density of [`SphereSolidAngle::sample`] (the cone's direction in its
+/// frame, 1/Ω), without the point on the sphere and its distance, which
+/// irradiance does not need.
 #[inline(always)]
 pub(super) fn sample_sphere(s: &SphereSolidAngle, u: DVec2) -> Option<LightDirection> {
-    let l = s.sample(u);
-    checked(l.direction, l.pdf)
+    let cone = s.cone();
+    checked(
+        s.frame().from_local(cone.sample(u)),
+        1.0 / cone.solid_angle(),
+    )
 }
 
 /// [`EmitterLight::sample`] of a sky cap: its cone, in its frame.
