@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind};
+use lambert_estimator::estimation::{estimate, EstimateConfig, EstimateError, SequenceKind};
 use lambert_estimator::strategy::Strategy;
 use lambert_light::Scene;
 use serde_json::json;
@@ -57,7 +57,11 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
         seed: options.seed,
         threads: options.threads,
     };
-    let report = estimate(&scene, &config).map_err(|e| format!("--{e}"))?;
+    let report = estimate(&scene, &config).map_err(|e| match e {
+        // A configuration error names a command-line option.
+        EstimateError::Config { .. } => format!("--{e}"),
+        _ => format!("{}: {e}", options.scene.display()),
+    })?;
     let analytic = closed_form(&scene).map(|c| c.total);
     let rel_error = analytic.and_then(|a| (a != 0.0).then(|| (report.mean - a) / a));
     let z = analytic

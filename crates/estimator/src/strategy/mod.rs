@@ -43,12 +43,20 @@ pub enum Heuristic {
 
 impl Heuristic {
     /// The weight of a sample drawn from technique a, whose density is
-    /// `pa`, against technique b with density `pb` at the same direction.
+    /// `pa` > 0, against technique b with density `pb` ≥ 0 at the same
+    /// direction.
+    ///
+    /// Computed from the ratio r = p_b/p_a as 1/(1 + r) and 1/(1 + r²):
+    /// the same values as p_a/(p_a + p_b) and p_a²/(p_a² + p_b²), but the
+    /// squares of densities above ~1e154 (a light 1e-133 sr across) would
+    /// overflow to ∞/∞ = NaN, and a sum of two densities near f64's
+    /// largest to a weight of 0; the ratio form only saturates, to 0 or 1.
     #[inline]
     pub fn weight(self, pa: f64, pb: f64) -> f64 {
+        let r = pb / pa;
         match self {
-            Heuristic::Balance => pa / (pa + pb),
-            Heuristic::Power => pa * pa / (pa * pa + pb * pb),
+            Heuristic::Balance => 1.0 / (1.0 + r),
+            Heuristic::Power => 1.0 / (1.0 + r * r),
         }
     }
 }
