@@ -389,32 +389,39 @@ fn partition_mode_passes_uniform_and_rejects_skew() {
 /// for the tests below; f continuous, with at most a few kinks or square-
 /// root cusps, which the bisection isolates).
 fn simpson_1d(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
-    fn rec(
-        f: &dyn Fn(f64) -> f64,
+    /// An interval [a, b] with f at its ends and middle, and Simpson's
+    /// value over it.
+    #[derive(Clone, Copy)]
+    struct Panel {
         a: f64,
         b: f64,
         fa: f64,
         fm: f64,
         fb: f64,
         whole: f64,
-        tol: f64,
-        depth: u32,
-    ) -> f64 {
-        let m = 0.5 * (a + b);
-        let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
-        let (flm, frm) = (f(lm), f(rm));
-        let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
-        let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
-        let delta = left + right - whole;
-        if depth == 0 || delta.abs() <= 15.0 * tol {
-            return left + right + delta / 15.0;
-        }
-        rec(f, a, m, fa, flm, fm, left, 0.5 * tol, depth - 1)
-            + rec(f, m, b, fm, frm, fb, right, 0.5 * tol, depth - 1)
     }
-    let (fa, fm, fb) = (f(a), f(0.5 * (a + b)), f(b));
-    let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
-    rec(f, a, b, fa, fm, fb, whole, tol, 48)
+    fn panel(f: &dyn Fn(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64) -> Panel {
+        let fm = f(0.5 * (a + b));
+        Panel {
+            a,
+            b,
+            fa,
+            fm,
+            fb,
+            whole: (b - a) / 6.0 * (fa + 4.0 * fm + fb),
+        }
+    }
+    fn rec(f: &dyn Fn(f64) -> f64, p: Panel, tol: f64, depth: u32) -> f64 {
+        let m = 0.5 * (p.a + p.b);
+        let left = panel(f, p.a, m, p.fa, p.fm);
+        let right = panel(f, m, p.b, p.fm, p.fb);
+        let delta = left.whole + right.whole - p.whole;
+        if depth == 0 || delta.abs() <= 15.0 * tol {
+            return left.whole + right.whole + delta / 15.0;
+        }
+        rec(f, left, 0.5 * tol, depth - 1) + rec(f, right, 0.5 * tol, depth - 1)
+    }
+    rec(f, panel(f, a, b, f(a), f(b)), tol, 48)
 }
 
 /// The documented target: every cell's expected count within
