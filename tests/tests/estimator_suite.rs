@@ -5,7 +5,7 @@
 //! and the negative controls the same tests must reject.
 
 use glam::DVec2;
-use lambert_estimator::clt::clt_applies;
+use lambert_estimator::clt::{clt_applies, normal_score};
 use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind, RQMC_REPLICATES};
 use lambert_estimator::strategy::{EmitterLight, Strategy};
 use lambert_estimator::{run_chunked, Estimate};
@@ -112,22 +112,6 @@ fn z_scores(scene: &Scene, strategy: Strategy, sequence: SequenceKind, scale_se:
             normal_score((r.mean - truth) / (r.std_error * scale_se), sequence)
         })
         .collect()
-}
-
-/// z as a standard normal score (see [`z_scores`]).
-fn normal_score(z: f64, sequence: SequenceKind) -> f64 {
-    match sequence {
-        SequenceKind::Independent => z,
-        _ => {
-            let t = StudentsT::new(0.0, 1.0, (RQMC_REPLICATES - 1) as f64).unwrap();
-            let n = Normal::standard();
-            if z <= 0.0 {
-                n.inverse_cdf(t.cdf(z))
-            } else {
-                -n.inverse_cdf(t.cdf(-z))
-            }
-        }
-    }
 }
 
 /// Honest standard errors make the scores N(0, 1), so Σ s² over the 200

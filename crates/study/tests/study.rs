@@ -8,7 +8,7 @@
 //! Deterministic (fixed seeds). Intervals over the whole built-in suite;
 //! slopes over the smooth scenes.
 
-use lambert_estimator::clt::clt_applies;
+use lambert_estimator::clt::{clt_applies, normal_score};
 use lambert_estimator::estimation::{SequenceKind, RQMC_REPLICATES};
 use lambert_estimator::strategy::Strategy;
 use lambert_estimator::ConfidenceInterval;
@@ -162,24 +162,6 @@ fn quantile(sequence: SequenceKind) -> f64 {
         _ => RQMC_REPLICATES,
     };
     ConfidenceInterval::new(0.0, 1.0, n, 0.99).quantile
-}
-
-/// z as a standard normal score: z itself for independent samples; for
-/// randomized QMC, whose z is Student-t(15), Φ⁻¹(F_t15(z)).
-fn normal_score(z: f64, sequence: SequenceKind) -> f64 {
-    match sequence {
-        SequenceKind::Independent => z,
-        _ => {
-            let t = StudentsT::new(0.0, 1.0, (RQMC_REPLICATES - 1) as f64).unwrap();
-            // Through the smaller tail, so that |z| up to ~37 keeps digits.
-            let normal = Normal::standard();
-            if z <= 0.0 {
-                normal.inverse_cdf(t.cdf(z))
-            } else {
-                -normal.inverse_cdf(t.cdf(-z))
-            }
-        }
-    }
 }
 
 impl Intervals {
