@@ -12,6 +12,25 @@
 //!
 //! (Johnson, Kotz & Balakrishnan, *Continuous Univariate Distributions*,
 //! vol. 2, ch. 29), summed here over the Poisson weights that matter.
+//!
+//! ```
+//! use lambert_validate::power::{
+//!     chi_square_power, critical_value, noncentral_chi_square_sf, noncentrality,
+//! };
+//! use statrs::distribution::{ChiSquared, ContinuousCDF};
+//! // The critical value is the upper-α point to ~1e-12 of α.
+//! let x = critical_value(255.0, 1e-4);
+//! assert!((ChiSquared::new(255.0).unwrap().sf(x) / 1e-4 - 1.0).abs() < 1e-10);
+//! // λ = 0 is the central distribution: P(χ²(2) > 2 ln 2) = ½, and the
+//! // power against no departure is the level itself.
+//! assert!((noncentral_chi_square_sf(2.0 * 2f64.ln(), 2.0, 0.0) - 0.5).abs() < 1e-14);
+//! assert!((chi_square_power(255.0, 0.0, 0.01) - 0.01).abs() < 1e-10);
+//! // Two cells claimed ½, ½, truly 0.51, 0.49, with 10⁶ samples:
+//! // λ = n · 2 · 0.01²/0.5 = 400, found at any reasonable level.
+//! let lambda = noncentrality(&[0.51, 0.49], &[0.5, 0.5], 1_000_000);
+//! assert!((lambda - 400.0).abs() < 1e-6);
+//! assert!(chi_square_power(1.0, lambda, 1e-4) > 0.999);
+//! ```
 
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use statrs::function::gamma::ln_gamma;
@@ -21,13 +40,6 @@ use statrs::function::gamma::ln_gamma;
 /// `lambda` = λ ≥ 0, by the Poisson mixture (module docs), the terms within
 /// 12 standard deviations of the Poisson mean λ/2 (the rest weigh < 1e-30).
 /// NaN for invalid arguments.
-///
-/// ```
-/// use lambert_validate::power::noncentral_chi_square_sf;
-/// // λ = 0 is the central distribution: P(χ²(2) > 2 ln 2) = ½.
-/// let p = noncentral_chi_square_sf(2.0 * 2f64.ln(), 2.0, 0.0);
-/// assert!((p - 0.5).abs() < 1e-14);
-/// ```
 pub fn noncentral_chi_square_sf(x: f64, dof: f64, lambda: f64) -> f64 {
     if !(dof > 0.0 && dof.is_finite() && lambda >= 0.0 && lambda.is_finite()) || x.is_nan() {
         return f64::NAN;
@@ -63,14 +75,6 @@ pub fn noncentral_chi_square_sf(x: f64, dof: f64, lambda: f64) -> f64 {
 /// 1 % of α in the far tail) refined by Newton steps on the survival
 /// function, x ← x + (sf(x) − α)/f(x), to ~1e-12 of α. NaN for invalid
 /// arguments.
-///
-/// ```
-/// use lambert_validate::power::critical_value;
-/// use statrs::distribution::{ChiSquared, ContinuousCDF};
-/// let x = critical_value(255.0, 1e-4);
-/// let sf = ChiSquared::new(255.0).unwrap().sf(x);
-/// assert!((sf / 1e-4 - 1.0).abs() < 1e-10);
-/// ```
 pub fn critical_value(dof: f64, alpha: f64) -> f64 {
     let Ok(d) = ChiSquared::new(dof) else {
         return f64::NAN;
@@ -99,14 +103,6 @@ pub fn critical_value(dof: f64, alpha: f64) -> f64 {
 /// The power of a chi-square test with `dof` degrees of freedom at level
 /// `alpha` against noncentrality `lambda`: P(χ²′(dof, λ) > x_α), x_α the
 /// [`critical_value`].
-///
-/// ```
-/// use lambert_validate::power::chi_square_power;
-/// // No departure: the power is the level itself.
-/// assert!((chi_square_power(255.0, 0.0, 0.01) - 0.01).abs() < 1e-10);
-/// // λ = 400 over 255 dof is found at any reasonable level.
-/// assert!(chi_square_power(255.0, 400.0, 1e-4) > 0.999);
-/// ```
 pub fn chi_square_power(dof: f64, lambda: f64, alpha: f64) -> f64 {
     noncentral_chi_square_sf(critical_value(dof, alpha), dof, lambda)
 }
@@ -115,13 +111,6 @@ pub fn chi_square_power(dof: f64, lambda: f64, alpha: f64) -> f64 {
 /// samples whose cells have true probabilities `truth` (qᵢ) and claimed
 /// probabilities `claimed` (pᵢ), over the cells with pᵢ > 0 (cells with
 /// pᵢ = 0 and qᵢ > 0 are immediate failures, not part of λ).
-///
-/// ```
-/// use lambert_validate::power::noncentrality;
-/// // Two cells claimed ½, ½, truly 0.51, 0.49: λ = n · 2 · 0.01²/0.5.
-/// let l = noncentrality(&[0.51, 0.49], &[0.5, 0.5], 1_000_000);
-/// assert!((l - 400.0).abs() < 1e-6);
-/// ```
 pub fn noncentrality(truth: &[f64], claimed: &[f64], n: u64) -> f64 {
     n as f64
         * truth
