@@ -31,34 +31,142 @@
 //! When p is close to the polygon (D < ℓ) the subtraction would bring large
 //! terms in, and the plain sum (with Rᵢ = C + aᵢ) is used; there it has no
 //! far-field cancellation.
+//!
+//! # Polygons low over the horizon
+//! The centred sum's terms are of the size of the solid angle Ω, its
+//! result of the size of Ω sin ε (ε the elevation): a polygon clipped by
+//! the horizon to a sliver, or lying just above it, cancels (a sliver of
+//! height h relative to its size loses 2 log₁₀(1/h) digits). There the
+//! contour integral of sin²ε dφ (module `sin2_contour`) has no such
+//! cancellation; its terms need the vertices' heights n·(vᵢ − p) to
+//! relative precision, however small they are next to |vᵢ − p|. Both
+//! forms report their cancellation factor κ = Σ|termᵢ| / |Σ termᵢ| (the
+//! factor by which rounding errors of relative size ε in the terms are
+//! amplified): when the centred sum's κ exceeds 8, the sin² form is
+//! evaluated too and the one with the smaller κ is kept.
+//!
+//! # Heights and clipping
+//! The heights n·(vᵢ − p) are first formed in f64 (n·C + n·aᵢ) with a
+//! bound on their error, 16ε(|C| + |aᵢ|). When every vertex is above the
+//! horizon by more than its bound, no clipping is needed and nothing more
+//! is computed; when every vertex is below, the result is 0. Otherwise the
+//! heights are computed exactly (an exact dot product rounded to a
+//! double-double, module `exact_sum`), so that which vertices are above,
+//! where the edges cross the horizon (at the fraction zᵢ/(zᵢ − zⱼ) of the
+//! edge) and the heights of the sliver left above are exact to rounding,
+//! whatever the polygon's distance: rounding n·(vᵢ − p) in f64 would move
+//! the horizon by ε|vᵢ − p| across the polygon.
 
 use super::cap::v_minus_sin;
+use super::double_double::Dd;
+use super::exact_sum;
+use super::sin2_contour::{self, LowEdge, LowVertex};
 use glam::DVec3;
 
+/// The centred sum's cancellation factor above which the sin² form is
+/// tried as well.
+const TRY_SIN2_ABOVE: f64 = 8.0;
+
 /// The projected solid angle (sr) of the part of the convex polygon
-/// `vertices` above the plane through `p` with unit normal `n`.
+/// `vertices` above the plane through `p` with unit normal `n`. Lengths
+/// scaled so that coordinates are at most 1 in magnitude.
 pub(crate) fn projected_solid_angle(p: DVec3, n: DVec3, vertices: &[DVec3]) -> f64 {
     let k = vertices.len();
     let centre = vertices.iter().fold(DVec3::ZERO, |s, &v| s + v) / k as f64;
     let big_c = centre - p;
     let a: Vec<DVec3> = vertices.iter().map(|&v| v - centre).collect();
-    // Clip (Sutherland–Hodgman) in centre-relative coordinates.
+    // f64 heights and their error bounds: decide when that is safe.
     let h0 = n.dot(big_c);
-    let mut clipped = Vec::with_capacity(k + 1);
-    for i in 0..k {
-        let (x, y) = (a[i], a[(i + 1) % k]);
-        let (dx, dy) = (h0 + n.dot(x), h0 + n.dot(y));
-        if dx >= 0.0 {
-            clipped.push(x);
-        }
-        if (dx > 0.0 && dy < 0.0) || (dx < 0.0 && dy > 0.0) {
-            clipped.push(x + (y - x) * (dx / (dx - dy)));
-        }
+    let (mut all_above, mut all_below) = (true, true);
+    for &ai in &a {
+        let z = h0 + n.dot(ai);
+        let bound = 16.0 * f64::EPSILON * (big_c.length() + ai.length());
+        all_above &= z > bound;
+        all_below &= z < -bound;
     }
-    let k = clipped.len();
-    if k < 3 {
+    if all_below {
         return 0.0;
     }
+    let exact_heights = |vs: &[DVec3]| -> Vec<Dd> {
+        vs.iter()
+            .map(|&v| exact_sum::dot_of_difference(n, v, p))
+            .collect()
+    };
+    // The visible polygon (centre-relative) and, when known, its exact
+    // heights.
+    let (clipped, heights) = if all_above {
+        (a, None)
+    } else {
+        let (c, z) = clip(&a, &exact_heights(vertices));
+        (c, Some(z))
+    };
+    if clipped.len() < 3 {
+        return 0.0;
+    }
+    let (lambert, kappa) = centred_sum(big_c, n, &clipped);
+    if kappa <= TRY_SIN2_ABOVE {
+        return lambert;
+    }
+    let heights = heights.unwrap_or_else(|| exact_heights(vertices));
+    match low_sum(big_c, n, &clipped, &heights) {
+        Some((low, low_kappa)) if low_kappa < kappa => low,
+        _ => lambert,
+    }
+}
+
+/// Sutherland–Hodgman clipping against the receiver's plane with exact
+/// heights: the visible polygon (centre-relative positions) and its
+/// heights (0 at the cut points).
+fn clip(a: &[DVec3], z: &[Dd]) -> (Vec<DVec3>, Vec<Dd>) {
+    let k = a.len();
+    let (mut out, mut heights) = (Vec::with_capacity(k + 1), Vec::with_capacity(k + 1));
+    for i in 0..k {
+        let j = (i + 1) % k;
+        let (zx, zy) = (z[i], z[j]);
+        if zx.hi >= 0.0 {
+            out.push(a[i]);
+            heights.push(zx);
+        }
+        if (zx.hi > 0.0 && zy.hi < 0.0) || (zx.hi < 0.0 && zy.hi > 0.0) {
+            let t = zx.hi / (zx - zy).hi;
+            out.push(a[i] + (a[j] - a[i]) * t);
+            heights.push(Dd::ZERO);
+        }
+    }
+    (out, heights)
+}
+
+/// The sin² contour form over the visible polygon (module docs): its
+/// value and cancellation factor, or `None` where it does not apply.
+fn low_sum(big_c: DVec3, n: DVec3, a: &[DVec3], z: &[Dd]) -> Option<(f64, f64)> {
+    let (t1, t2) = n.any_orthonormal_pair();
+    let flat = |v: DVec3| DVec3::new(t1.dot(v), t2.dot(v), 0.0);
+    let hc = flat(big_c);
+    let k = a.len();
+    let vertices: Vec<LowVertex> = (0..k)
+        .map(|i| LowVertex {
+            h: hc + flat(a[i]),
+            z: z[i].to_f64(),
+        })
+        .collect();
+    let edges: Vec<LowEdge> = (0..k)
+        .map(|i| {
+            let j = (i + 1) % k;
+            LowEdge {
+                dh: flat(a[j] - a[i]),
+                dz: (z[j] - z[i]).to_f64(),
+            }
+        })
+        .collect();
+    sin2_contour::projected_solid_angle(&vertices, &edges)
+}
+
+/// Lambert's sum relative to the visible polygon's centre (module docs):
+/// (P, κ) with κ = Σ|termᵢ| / |n·Σ termᵢ| (the terms' rounding is
+/// relative to their length, and n·Σ may be much smaller than the sum's
+/// length: a polygon low over the horizon).
+fn centred_sum(big_c: DVec3, n: DVec3, clipped: &[DVec3]) -> (f64, f64) {
+    let k = clipped.len();
     // Re-centre on the clipped polygon.
     let shift = clipped.iter().fold(DVec3::ZERO, |s, &v| s + v) / k as f64;
     let big_c = big_c + shift;
@@ -68,6 +176,7 @@ pub(crate) fn projected_solid_angle(p: DVec3, n: DVec3, vertices: &[DVec3]) -> f
     let far = d2 >= size * size;
     let mut sum = DVec3::ZERO;
     let mut comp = DVec3::ZERO;
+    let mut abs_sum = 0.0f64;
     for i in 0..k {
         let (ai, aj) = (a[i], a[(i + 1) % k]);
         let e = aj - ai;
@@ -88,8 +197,11 @@ pub(crate) fn projected_solid_angle(p: DVec3, n: DVec3, vertices: &[DVec3]) -> f
             let inv_diff = -(d2 * (di + dj) + di * dj) / ((d2 + rr) * d2 * rr);
             let beta = kappa_minus_1 / rr + inv_diff;
             let kappa = 1.0 + kappa_minus_1;
-            ce * beta + ai.cross(aj) * (kappa / rr)
+            let (first, second) = (ce * beta, ai.cross(aj) * (kappa / rr));
+            abs_sum += first.length() + second.length();
+            first + second
         } else {
+            abs_sum += theta;
             cross * (theta / len)
         };
         // Neumaier summation, per component.
@@ -98,5 +210,11 @@ pub(crate) fn projected_solid_angle(p: DVec3, n: DVec3, vertices: &[DVec3]) -> f
         comp += DVec3::select(big, (sum - t) + term, (term - t) + sum);
         sum = t;
     }
-    0.5 * n.dot(sum + comp).abs()
+    let total = n.dot(sum + comp);
+    let kappa = if total != 0.0 {
+        abs_sum / total.abs()
+    } else {
+        f64::INFINITY
+    };
+    (0.5 * total.abs(), kappa)
 }

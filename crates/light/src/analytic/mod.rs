@@ -37,7 +37,9 @@
 mod accuracy;
 pub mod cap;
 pub mod disk;
+mod double_double;
 pub mod error;
+mod exact_sum;
 mod lambert;
 #[cfg(test)]
 pub(crate) mod oracle;
@@ -46,6 +48,7 @@ pub mod polygon;
 pub(crate) mod quadrature;
 mod rim;
 mod scaled;
+mod sin2_contour;
 pub mod sky;
 pub mod sphere;
 #[cfg(test)]
@@ -61,7 +64,7 @@ pub use disk::{
 pub use error::AnalyticError;
 pub use point::{directional_light_irradiance, point_light_irradiance};
 pub use polygon::{clip_polygon_to_hemisphere, polygon_irradiance};
-pub use sky::{dome_irradiance, sky_cap_irradiance, sky_irradiance, try_sky_irradiance};
+pub use sky::{dome_irradiance, sky_cap_irradiance, sky_irradiance};
 pub use sphere::sphere_irradiance;
 
 /// Which faces of a planar emitter (disk, polygon) emit.
