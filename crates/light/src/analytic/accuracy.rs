@@ -686,6 +686,30 @@ fn huge_straddling_disk_answers() {
     }
 }
 
+/// A disk much larger than its distance, overhead and tilted so that the
+/// receiver's plane cuts it far away: its rim is everywhere low (≤ 0.6°
+/// of elevation) yet it covers the zenith, where ∮ dφ = 2π and the sin²
+/// form does not apply; Lambert's form is used. Against the oracle, for
+/// the tilts that make it straddle and that leave it wholly above:
+/// tolerance [`QUADRATURE_BOUND`].
+#[test]
+fn disk_overhead_covering_the_zenith() {
+    for &tilt in &[0.0f64, 1e-3, 0.01, 0.05] {
+        let m = -DVec3::new(tilt.sin(), 0.0, tilt.cos());
+        let c = DVec3::new(0.0, 0.0, 1.0);
+        let value =
+            raw::disk_irradiance(1.0, DVec3::ZERO, DVec3::Z, c, m, 1000.0, Emission::OneSided)
+                .unwrap();
+        let exact = oracle::disk(1.0, DVec3::ZERO, DVec3::Z, c, raw::normal(m), 1000.0, false);
+        let e = exact.rel_err(value);
+        assert!(
+            e < QUADRATURE_BOUND,
+            "tilt {tilt}: {value} vs {}: {e:e}",
+            exact.to_f64()
+        );
+    }
+}
+
 /// Overflow is an error naming the quantity; a receiver on a sphere is an
 /// error at any magnitude; two sphere lights of radiance 1e308 each give a
 /// finite value or an overflow error, never ∞.

@@ -179,6 +179,25 @@ pub fn cap_projected_solid_angle(cos_beta: f64, sin_gamma: f64, cos_gamma: f64) 
     q * s * s
 }
 
+/// The f64 fast path for a cap (γ ≤ π/2) clearly off the horizon, from
+/// f64 values of cos β (absolute error ≤ 8u, u = 2⁻⁵³, as formed by the
+/// callers from normalised f64 vectors) and sin γ (relative error ≤ 4u):
+/// wholly above with cos β ≥ 1/4 gives (π cos β, sin γ), relative error
+/// ≤ 40u; wholly below gives 0. `None` when the cap may cross the horizon
+/// or cos β is small (its absolute error would matter): the caller then
+/// takes the exact path.
+pub(crate) fn clear_of_horizon(cos_beta: f64, sin_gamma: f64) -> Option<(f64, f64)> {
+    let e = 4.0 * f64::EPSILON; // 8u
+    let margin = sin_gamma * (1.0 + e) + e;
+    if cos_beta >= margin && cos_beta >= 0.25 {
+        Some((PI * cos_beta, sin_gamma))
+    } else if cos_beta <= -margin {
+        Some((0.0, sin_gamma))
+    } else {
+        None
+    }
+}
+
 /// (q, s) with P = q·s²: (P/sin²γ, sin γ) for γ ≤ π/2 (P ≤ π sin²γ, so q
 /// ≤ π and does not underflow for tiny caps), (P, 1) for γ > π/2; the
 /// caller forms L·q·s·s without intermediate underflow.

@@ -240,6 +240,9 @@ fn disk_projected(
     // Exact power-of-two scaling: c − p cannot overflow.
     let k = power_of_two_above(c.abs().max_element().max(p.abs().max_element()).max(r));
     let (c, p, r) = (c / k, p / k, r / k);
+    if let Some(q) = clearly_above(c - p, n, m, r, emission) {
+        return q;
+    }
     // c − p exactly (double-double per component), then a second exact
     // scaling so that max(|c − p|, R) is in [½, 1].
     let v_dd = [Dd::sum(c.x, -p.x), Dd::sum(c.y, -p.y), Dd::sum(c.z, -p.z)];
@@ -277,16 +280,7 @@ fn disk_projected(
         bottom: bottom.to_f64(),
     };
     if bottom.at_least(0.0) {
-        let h = hv.abs();
-        let z = m * hv.signum();
-        let lateral = v - m * hv;
-        let s = lateral.length();
-        let (jz, jx) = disk_vector_over_r2(h, s, r);
-        let x = if s > 0.0 { lateral / s } else { DVec3::ZERO };
-        let (a, b) = (jz * n.dot(z), jx * n.dot(x));
-        let closed = (a + b).max(0.0);
-        // κ of n·J: its terms' rounding (relative to |J|) against n·J.
-        let kappa = (jz.abs() + jx.abs()) / (a + b).abs();
+        let (closed, kappa) = closed_form_over_r2(v, hv, n, m, r);
         if !(kappa > TRY_CONTOUR_ABOVE) {
             return (closed, 0.0, r);
         }
@@ -297,6 +291,47 @@ fn disk_projected(
     }
     let i = rim.straddling_over_r2();
     (i.value, i.error, r)
+}
+
+/// (n·J/R², κ) for a disk wholly above the horizon (module docs), in
+/// lengths where max(|v|, R) ≈ 1, with κ = (|J_z| + |J_x|)/|n·J| the factor
+/// by which the rounding of J's components (relative to |J|) is amplified.
+fn closed_form_over_r2(v: DVec3, hv: f64, n: DVec3, m: DVec3, r: f64) -> (f64, f64) {
+    let h = hv.abs();
+    let z = m * hv.signum();
+    let lateral = v - m * hv;
+    let s = lateral.length();
+    let (jz, jx) = disk_vector_over_r2(h, s, r);
+    let x = if s > 0.0 { lateral / s } else { DVec3::ZERO };
+    let (a, b) = (jz * n.dot(z), jx * n.dot(x));
+    ((a + b).max(0.0), (jz.abs() + jx.abs()) / (a + b).abs())
+}
+
+/// The f64 fast path of [`disk_projected`]: the closed form when the disk
+/// is clearly above the horizon (its bottom higher than 16u(|v| + R), the
+/// bound on the f64 heights' error), not seen nearly edge-on
+/// (|m·v| ≥ |v|/8, so the receiver's height over its plane has a relative
+/// error ≤ 40u) and n·J does not cancel (κ ≤ 8); `None` otherwise.
+fn clearly_above(
+    v: DVec3,
+    n: DVec3,
+    m: DVec3,
+    r: f64,
+    emission: Emission,
+) -> Option<(f64, f64, f64)> {
+    let l0 = power_of_two_above(v.length().max(r));
+    let (v, r) = (v / l0, r / l0);
+    let d = v.length();
+    let hv = m.dot(v);
+    let bottom = n.dot(v) - r * n.cross(m).length();
+    if !(r > 0.0 && hv.abs() >= d / 8.0 && bottom > 8.0 * f64::EPSILON * (d + r)) {
+        return None;
+    }
+    if emission == Emission::OneSided && hv > 0.0 {
+        return Some((0.0, 0.0, r));
+    }
+    let (closed, kappa) = closed_form_over_r2(v, hv, n, m, r);
+    (kappa <= TRY_CONTOUR_ABOVE).then_some((closed, 0.0, r))
 }
 
 /// The closed form's cancellation factor above which the contour

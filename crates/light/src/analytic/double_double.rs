@@ -216,14 +216,15 @@ impl Dd {
         let r2 = r.square();
         let mut s = r;
         let mut term = r;
-        let mut j = 1.0f64;
-        loop {
+        // |r| ≤ π/4 + tiny: r²ʲ⁺¹/(2j + 1)! < 1e-34 by j = 15; the bound
+        // also ends the loop for a NaN argument.
+        for j in 1..=16 {
+            let j = j as f64;
             term = -(term * r2).div_f64((2.0 * j) * (2.0 * j + 1.0));
             s = s + term;
             if term.hi.abs() <= 1e-34 * s.hi.abs() || term.hi == 0.0 {
                 break;
             }
-            j += 1.0;
         }
         let c = (Dd::ONE - s.square()).sqrt();
         match (k as i64).rem_euclid(4) {
@@ -337,14 +338,14 @@ pub(crate) fn v_minus_sin_over_cube(v: Dd) -> Dd {
     let v2 = v.square();
     let mut term = Dd::ONE.div_f64(6.0);
     let mut sum = term;
-    let mut k = 1.0f64;
-    loop {
+    // |v| < 1.5: the k-th term is below 1.5²ᵏ/(2k + 3)! < 1e-34 by k = 14.
+    for k in 1..=16 {
+        let k = k as f64;
         term = -(term * v2).div_f64((2.0 * k + 2.0) * (2.0 * k + 3.0));
         sum = sum + term;
         if term.hi.abs() <= 1e-34 * sum.hi.abs() {
             break;
         }
-        k += 1.0;
     }
     sum
 }

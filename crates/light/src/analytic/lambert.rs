@@ -117,7 +117,7 @@ pub(crate) fn projected_solid_angle(p: DVec3, n: DVec3, vertices: &[DVec3]) -> f
 /// Sutherland–Hodgman clipping against the receiver's plane with exact
 /// heights: the visible polygon (centre-relative positions) and its
 /// heights (0 at the cut points).
-fn clip(a: &[DVec3], z: &[Dd]) -> (Vec<DVec3>, Vec<Dd>) {
+pub(crate) fn clip(a: &[DVec3], z: &[Dd]) -> (Vec<DVec3>, Vec<Dd>) {
     let k = a.len();
     let (mut out, mut heights) = (Vec::with_capacity(k + 1), Vec::with_capacity(k + 1));
     for i in 0..k {

@@ -1,13 +1,15 @@
 //! Closed-form irradiance from uniform Lambertian emitters, exact in f64 on
 //! the hard cases (tiny and distant lights, grazing receivers, lights
-//! straddling the horizon, receivers almost touching the light).
+//! straddling the horizon or barely showing above it, receivers almost
+//! touching the light, magnitudes across the whole f64 range).
 //!
-//! Every function is pure, takes plain geometry (`f64`, [`glam::DVec3`])
-//! and computes E(p, n) = ∫_{H²(n)} L(ω) cos θ dω for a one-sided receiver
-//! at point `p` with unit normal `n` (only directions with n·ω > 0 count),
-//! in W/m² when the radiance is in W/(m²·sr). The receiver's plane clips
-//! every light: caps and spheres cut by the horizon, disks and polygons
-//! clipped at n·(x − p) = 0.
+//! Every function is pure, takes the shapes of `lambert_geometry` (or
+//! plain `f64`, [`glam::DVec3`]) and a [`Receiver`](crate::Receiver), and
+//! computes E(p, n) = ∫_{H²(n)} L(ω) cos θ dω for a one-sided receiver at
+//! point `p` with unit normal `n` (only directions with n·ω > 0 count), in
+//! W/m² when the radiance is in W/(m²·sr). The receiver's plane clips every
+//! light: caps and spheres cut by the horizon, disks and polygons clipped
+//! at n·(x − p) = 0.
 //!
 //! | emitter | function | method |
 //! |---|---|---|
@@ -16,8 +18,8 @@
 //! | cap of directions (any tilt) | [`sky_cap_irradiance`], [`cap_projected_solid_angle`] | closed form |
 //! | sphere | [`sphere_irradiance`] | closed form (a sphere seen from outside is a cap) |
 //! | disk, coaxial / parallel offset | [`disk_coaxial_irradiance`], [`disk_parallel_offset_irradiance`] | closed form |
-//! | disk, any tilt | [`disk_irradiance`] | closed form when wholly above the horizon; adaptive Gauss–Kronrod over the visible rim when it straddles |
-//! | convex polygon | [`polygon_irradiance`] | closed form (Lambert's formula after clipping) |
+//! | disk, any tilt | [`disk_irradiance`] | closed form when wholly and well above the horizon; bounded adaptive Gauss–Kronrod over the rim (sin²ε form) when it straddles or lies low |
+//! | convex polygon | [`polygon_irradiance`] | closed form: Lambert's formula relative to the centre after clipping, or the sin²ε contour form per edge when low over the horizon |
 //! | point light | [`point_light_irradiance`] | closed form |
 //! | directional light | [`directional_light_irradiance`] | closed form |
 //!
@@ -28,10 +30,26 @@
 //! for real-time graphics", Microsoft Research MSR-TR-96-11, 1996, for the
 //! cap cut by the horizon; pbrt-v4 for the conventions.
 //!
-//! Inputs are validated: non-finite values, non-unit normals (|n| off 1 by
-//! more than 1e-6), non-positive radii, a receiver inside a sphere, and
-//! polygons that are degenerate, non-planar or non-convex return an
-//! [`AnalyticError`] naming the parameter.
+//! # Accuracy
+//! The inputs (f64 coordinates, radii, normals as stored) are taken as
+//! exact, and the result is within 1e-12 relative of the exact irradiance
+//! for those inputs, measured against a 1024-bit evaluation on sweeps of
+//! each hard class (distance/size 1 … 1e12, slivers 1e-3 … 1e-12 of the
+//! light's size or angular radius above the horizon, magnitudes 1e-300 …
+//! 1e300; the worst measured error is 2.4e-15). Where the geometry itself
+//! cancels — a sliver's height n·(v − p) of 1e-24 against |v − p|, a cap's
+//! depth sin γ − |cos β| — those few quantities are formed exactly
+//! (error-free transformations and exact dot products rounded to
+//! double-double) and the formula is one whose terms do not cancel, or is
+//! evaluated in double-double where its cancellation is inherent. The
+//! price is paid only by those configurations: ordinary ones take the f64
+//! path (see each module for its cost).
+//!
+//! Inputs are validated: non-finite values, zero normals, non-positive
+//! radii, a receiver inside a sphere, and polygons that are degenerate,
+//! non-planar or non-convex return an [`AnalyticError`] naming the
+//! parameter; a result beyond the f64 range is [`AnalyticError::Overflow`],
+//! never ∞.
 
 #[cfg(test)]
 mod accuracy;

@@ -22,6 +22,17 @@
 //! the integrand smooth. Otherwise the visible part reaches high, its P is
 //! not small next to Lambert's terms, and Lambert's form is used.
 //!
+//! A disk wholly above the horizon but low over it relative to its
+//! angular size (far away, just above the horizon) makes the closed form
+//! n·J a small difference of J's components; the same sin²ε form around
+//! the whole rim (no chord, its height bottom + 2Rg cos²(t/2) a sum of
+//! non-negative terms) is then evaluated too (module `disk`).
+//!
+//! The rim's height is taken from its exact top and bottom heights
+//! f₀ ± Rg (computed by the caller in double-double from the exact inputs):
+//! the visible arc's half-width t₁ and the height at the arc's ends, where
+//! it vanishes, keep their relative precision however little shows.
+//!
 //! The arc integral is an adaptive Gauss–Kronrod quadrature with a work
 //! bound ([`quadrature::MAX_PANELS`] panels, 30 720 evaluations); its
 //! error bound is returned with the value.
@@ -59,11 +70,20 @@ impl Rim {
         (e1, self.m.cross(e1))
     }
 
-    /// Whether the rim stays below ≈ 44° of elevation (sin ε ≤ 0.7): then
-    /// the disk does not cover the zenith and the sin² form applies.
+    /// Whether the rim stays below ≈ 44° of elevation (sin ε ≤ 0.7) and
+    /// the disk does not cover the zenith (a large disk overhead can do so
+    /// with a low rim): then ∮ dφ = 0 and the sin² form applies.
     fn low(&self) -> bool {
         let distance = self.v.length();
-        distance > self.r && self.top <= 0.7 * (distance - self.r)
+        let rim_low = distance > self.r && self.top <= 0.7 * (distance - self.r);
+        // The vertical ray p + t n meets the disk's plane at t = m·v / m·n;
+        // the zenith is covered when that point is within r of the centre
+        // (decided far from the rim, so f64 suffices: a rim near the
+        // zenith is not low).
+        let mn = self.m.dot(self.n);
+        let t = self.m.dot(self.v) / mn;
+        let covers_zenith = mn != 0.0 && t > 0.0 && (self.n * t - self.v).length() <= self.r;
+        rim_low && !covers_zenith
     }
 
     /// The sin²ε dφ integrand over the rim divided by r² (module docs),

@@ -1,6 +1,6 @@
 //! Uniform skies: the whole sky, a dome, and a cap of directions.
 
-use super::cap::{cap_over_sin2, CapAngles};
+use super::cap::{cap_over_sin2, clear_of_horizon, CapAngles};
 use super::disk::power_of_two_above;
 use super::double_double::Dd;
 use super::error::{finite, unit, AnalyticError};
@@ -63,8 +63,8 @@ pub fn sky_cap_irradiance(
     half_angle: f64,
 ) -> Result<f64, AnalyticError> {
     finite("radiance", radiance)?;
-    unit("normal", normal)?;
-    unit("axis", axis)?;
+    let n_unit = unit("normal", normal)?;
+    let a_unit = unit("axis", axis)?;
     finite("half_angle", half_angle)?;
     if !(half_angle > 0.0 && half_angle <= PI) {
         return Err(AnalyticError::Input(GeometryError::OutOfRange {
@@ -73,6 +73,14 @@ pub fn sky_cap_irradiance(
             range: "(0, π]",
         }));
     }
+    // Caps clearly off the horizon: f64 (cos β to 8u from the normalised
+    // vectors, module `cap`).
+    let (sg, cg) = half_angle.sin_cos();
+    if cg >= 0.0 {
+        if let Some((q, s)) = clear_of_horizon(n_unit.dot(a_unit), sg) {
+            return scaled::product("irradiance", &[radiance, q, s, s]);
+        }
+    }
     // cos β from the exact inputs: the exact dot product of the raw
     // vectors (each scaled by a power of two, exactly) over their lengths.
     let (n, a) = (
@@ -80,7 +88,6 @@ pub fn sky_cap_irradiance(
         axis / power_of_two_above(axis.abs().max_element()),
     );
     let cb = exact_sum::dot(n, a) / (exact_sum::length_f64(n) * exact_sum::length_f64(a));
-    let (sg, cg) = half_angle.sin_cos();
     // sin γ and cos γ in double-double when the cap's rim passes close to
     // the horizon (|cos β| within a factor 2 of sin γ), where its depth
     // sin γ − |cos β| needs them (module `cap`); the f64 values elsewhere.

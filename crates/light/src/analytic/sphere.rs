@@ -1,6 +1,6 @@
 //! A uniform spherical light.
 
-use super::cap::{cap_over_sin2, CapAngles};
+use super::cap::{cap_over_sin2, clear_of_horizon, CapAngles};
 use super::disk::power_of_two_above;
 use super::double_double::Dd;
 use super::error::{finite, AnalyticError};
@@ -19,7 +19,9 @@ use lambert_geometry::f64::Sphere;
 /// horizon-clipped form rewritten without cancellation when it straddles,
 /// 0 below.
 ///
-/// The angles come from the exact inputs to double-double precision
+/// A sphere clearly outside (d ≥ 2r) and clearly above or below the
+/// horizon (cos β ≥ 1/4) takes the f64 path; every other configuration
+/// has its angles from the exact inputs to double-double precision
 /// (module `cap`): c − p exactly (TwoSum per component), d = |c − p|,
 /// sin α = r/d, cos α = √((d − r)(d + r))/d, cos β = n·(c − p)/(|n| d)
 /// and cos β / sin α = n·(c − p)/(|n| r) from the exact dot product. So a
@@ -59,8 +61,25 @@ pub fn sphere_irradiance(
     // 1e308 away is on it, not at an infinite distance.
     let k = power_of_two_above(c.abs().max_element().max(p.abs().max_element()).max(r));
     let (c, p, r) = (c / k, p / k, r / k);
+    // Ordinary spheres, clearly outside and clearly off the horizon: f64.
+    let v = c - p;
+    let d = v.length();
+    if d >= 2.0 * r && r > 0.0 {
+        if let Some((q, s)) = clear_of_horizon(n.dot(v) / d, r / d) {
+            return scaled::product("irradiance", &[radiance, q, s, s]);
+        }
+    }
     let v = [Dd::sum(c.x, -p.x), Dd::sum(c.y, -p.y), Dd::sum(c.z, -p.z)];
     let d = exact_sum::length(v);
+    if !(r > 0.0) {
+        // The radius underflowed against the distances: E = Lπ(r/d)²
+        // underflows too, unless the receiver is at the centre.
+        return if d.hi > 0.0 {
+            Ok(0.0)
+        } else {
+            Err(AnalyticError::ReceiverInsideLight { light: "sphere" })
+        };
+    }
     let r_dd = Dd::from(r);
     if !((d - r_dd).hi > 0.0) {
         return Err(AnalyticError::ReceiverInsideLight { light: "sphere" });
