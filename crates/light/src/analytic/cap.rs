@@ -198,6 +198,9 @@ pub(crate) fn clear_of_horizon(cos_beta: f64, sin_gamma: f64) -> Option<(f64, f6
     }
 }
 
+/// Caps with sin γ below this (2⁻⁷²⁰) are points (see [`cap_over_sin2`]).
+const TINY: f64 = 1.813_022_199_912_223_6e-217;
+
 /// (q, s) with P = q·s²: (P/sin²γ, sin γ) for γ ≤ π/2 (P ≤ π sin²γ, so q
 /// ≤ π and does not underflow for tiny caps), (P, 1) for γ > π/2; the
 /// caller forms L·q·s·s without intermediate underflow.
@@ -224,6 +227,17 @@ pub(crate) fn cap_over_sin2(a: &CapAngles) -> (f64, f64) {
         return ((PI_DD - p_small).to_f64().max(0.0), 1.0);
     }
     let s = sg.to_f64();
+    if s < TINY {
+        // A cap this small is a point: wholly above, P = π sin²γ cos β;
+        // otherwise P ≤ (1 + π) sin³γ < 2⁻²¹⁵⁷, and L·P < 2¹⁰²⁴·2⁻²¹⁵⁷ is
+        // below half the smallest f64 for any finite L (and cos β / sin γ
+        // could overflow).
+        return if (a.cos_beta - sg).at_least(0.0) {
+            (PI * a.cos_beta.to_f64(), s)
+        } else {
+            (0.0, s)
+        };
+    }
     let cbt = a.cos_beta_over_sin_gamma;
     if cbt.at_least(1.0) {
         return (PI * a.cos_beta.to_f64(), s);

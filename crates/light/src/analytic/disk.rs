@@ -39,7 +39,8 @@
 //! - Lengths are scaled by powers of two (exact), first so that c − p
 //!   cannot overflow, then so that max(|c − p|, R) is in [½, 1].
 
-use super::double_double::Dd;
+use super::dd_vector::Dd3;
+use super::double_double::{Dd, PI as PI_DD};
 use super::error::{finite, AnalyticError};
 use super::exact_sum;
 use super::Emission;
@@ -182,7 +183,11 @@ pub fn disk_irradiance(
     receiver: &Receiver,
 ) -> Result<f64, AnalyticError> {
     let b = disk_irradiance_with_error_bound(disk, emission, radiance, receiver)?;
-    if b.error_bound <= DISK_RELATIVE_ERROR_LIMIT * b.irradiance.abs() {
+    // A bound below the smallest normal f64 is the subnormal range's own
+    // granularity, not an unresolved quadrature.
+    if b.error_bound <= DISK_RELATIVE_ERROR_LIMIT * b.irradiance.abs()
+        || b.error_bound < f64::MIN_POSITIVE
+    {
         Ok(b.irradiance)
     } else {
         Err(AnalyticError::Unresolved {
@@ -255,7 +260,8 @@ fn disk_projected(
     // The receiver's height over the disk's plane, m̂·(c − p), exactly: a
     // one-sided disk emits towards +m (p must be on that side, hv < 0).
     let (n_len, m_len) = (exact_sum::length_f64(n), exact_sum::length_f64(m));
-    let hv = (exact_sum::dot_of_difference(m, c, p) / m_len).to_f64() / l0;
+    let hv_dd = (exact_sum::dot_of_difference(m, c, p) / m_len).div_f64(l0);
+    let hv = hv_dd.to_f64();
     if hv == 0.0 || (emission == Emission::OneSided && hv > 0.0) {
         return (0.0, 0.0, r);
     }
@@ -266,7 +272,9 @@ fn disk_projected(
     let g = exact_sum::length(exact_sum::cross(n, m)) / (n_len * m_len);
     let rg = g.mul_f64(r);
     let (top, bottom) = (f0 + rg, f0 - rg);
-    if top.at_most(0.0) {
+    if top.at_most(0.0) || r < TINY {
+        // A disk this small (r < 2⁻⁷²⁰ with |v| ≈ 1) has P/r² ≤ 4π, so
+        // E = L·(P/r²)·r·r < 2¹⁰²⁴·4π·2⁻¹⁴⁴⁰ is below the smallest f64.
         return (0.0, 0.0, r);
     }
     let rim = rim::Rim {
@@ -284,14 +292,28 @@ fn disk_projected(
         if !(kappa > TRY_CONTOUR_ABOVE) {
             return (closed, 0.0, r);
         }
-        return match rim.whole_over_r2() {
-            Some((i, contour_kappa)) if contour_kappa < kappa => (i.value, i.error, r),
-            _ => (closed, 0.0, r),
+        if let Some((i, contour_kappa)) = rim.whole_over_r2() {
+            if contour_kappa <= ACCEPT_CONTOUR_UP_TO {
+                return (i.value, i.error, r);
+            }
+        }
+        // Both cancel (a far disk at a grazing elevation, one seen nearly
+        // edge-on): n·J in double-double.
+        let inv = Dd::from(1.0 / l0);
+        let v_exact = Dd3 {
+            x: v_dd[0] * inv,
+            y: v_dd[1] * inv,
+            z: v_dd[2] * inv,
         };
+        return (closed_form_over_r2_dd(v_exact, hv_dd, n, m, r), 0.0, r);
     }
     let i = rim.straddling_over_r2();
     (i.value, i.error, r)
 }
+
+/// Disks with radius below this (2⁻⁷²⁰, in units where max(|c − p|, R) is
+/// about 1) are too small for any irradiance.
+const TINY: f64 = 1.813_022_199_912_223_6e-217;
 
 /// (n·J/R², κ) for a disk wholly above the horizon (module docs), in
 /// lengths where max(|v|, R) ≈ 1, with κ = (|J_z| + |J_x|)/|n·J| the factor
@@ -333,6 +355,44 @@ fn clearly_above(
     let (closed, kappa) = closed_form_over_r2(v, hv, n, m, r);
     (kappa <= TRY_CONTOUR_ABOVE).then_some((closed, 0.0, r))
 }
+
+/// [`closed_form_over_r2`]'s value in double-double throughout, from the
+/// exact c − p and receiver height `hv` (scaled): its error is ~u²κ.
+fn closed_form_over_r2_dd(v: Dd3, hv: Dd, n: DVec3, m: DVec3, r: f64) -> f64 {
+    let (n, m3) = (Dd3::from_f64(n), Dd3::from_f64(m));
+    let h = hv.abs();
+    let lateral = v - m3.scale(hv);
+    let s = lateral.length();
+    let (h2, s2, r2) = (h.square(), s.square(), Dd::from(r * r));
+    let r_dd = Dd::from(r);
+    let q = (h2 + (r_dd - s).square()).sqrt() * (h2 + (r_dd + s).square()).sqrt();
+    let t = h2 + s2 - Dd::product(r, r);
+    let u = h2 + Dd::product(r, r) - s2;
+    let q_minus_t_over_r2 = if t.hi >= 0.0 {
+        h2.mul_f64(4.0) / (q + t)
+    } else {
+        (q - t) / r2
+    };
+    let q_plus_u = if u.hi >= 0.0 {
+        q + u
+    } else {
+        (s2 * h2).mul_f64(4.0) / (q - u)
+    };
+    let jz = (q_minus_t_over_r2 / q).mul_f64(0.5) * PI_DD;
+    let n_z = n.dot(m3).mul_f64(hv.hi.signum());
+    let mut p = jz * n_z;
+    if s.hi > 0.0 {
+        let jx = PI_DD * h * s * q_minus_t_over_r2 / (q * q_plus_u);
+        p = p + jx * (n.dot(lateral) / s);
+    }
+    p.to_f64().max(0.0)
+}
+
+/// The contour form's cancellation factor up to which it is kept for a
+/// disk above the horizon (beyond, n·J is redone in double-double, which
+/// is cheaper than the quadrature and exact to ~u²κ): the quadrature's
+/// error bound, whose floor is 50ε∫|f|, stays below 1e-13 of the value.
+const ACCEPT_CONTOUR_UP_TO: f64 = 8.0;
 
 /// The closed form's cancellation factor above which the contour
 /// integral over the whole rim is tried as well.

@@ -46,13 +46,21 @@ fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, b - (s - a))
 }
 
-/// Veltkamp's splitting: a = h + l with h and l of 26 significant bits.
+/// Veltkamp's splitting: a = h + l with h and l of 26 significant bits;
+/// above 2⁹⁹⁵ (where (2²⁷ + 1)·a would overflow) the split is done on
+/// a·2⁻³⁰ and scaled back, exactly.
 #[cfg(not(target_feature = "fma"))]
 #[inline]
 fn split(a: f64) -> (f64, f64) {
-    let c = 134_217_729.0 * a; // 2²⁷ + 1
-    let h = c - (c - a);
-    (h, a - h)
+    const BIG: f64 = 3.348_464_397_457_085_4e299; // 2⁹⁹⁵
+    let (scaled, back) = if a.abs() > BIG {
+        (a * 9.313_225_746_154_785e-10, 1_073_741_824.0) // 2⁻³⁰, 2³⁰
+    } else {
+        (a, 1.0)
+    };
+    let c = 134_217_729.0 * scaled; // 2²⁷ + 1
+    let h = c - (c - scaled);
+    (h * back, (scaled - h) * back)
 }
 
 /// p + e = a·b exactly, p = fl(a·b) (by FMA when the target has it, else
@@ -66,7 +74,6 @@ pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
     }
     #[cfg(not(target_feature = "fma"))]
     {
-        debug_assert!(a.abs() < 2f64.powi(995) && b.abs() < 2f64.powi(995));
         let (ah, al) = split(a);
         let (bh, bl) = split(b);
         (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)

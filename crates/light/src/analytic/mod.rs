@@ -54,6 +54,7 @@
 #[cfg(test)]
 mod accuracy;
 pub mod cap;
+mod dd_vector;
 pub mod disk;
 mod double_double;
 pub mod error;

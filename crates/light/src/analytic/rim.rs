@@ -72,10 +72,13 @@ impl Rim {
 
     /// Whether the rim stays below ≈ 44° of elevation (sin ε ≤ 0.7) and
     /// the disk does not cover the zenith (a large disk overhead can do so
-    /// with a low rim): then ∮ dφ = 0 and the sin² form applies.
+    /// with a low rim): then ∮ dφ = 0 and the sin² form applies. Every rim
+    /// point is at least ||v| − r| from the receiver (also when the
+    /// receiver is within the rim's sphere: a disk vastly larger than its
+    /// distance), so sin ε ≤ top/||v| − r|.
     fn low(&self) -> bool {
-        let distance = self.v.length();
-        let rim_low = distance > self.r && self.top <= 0.7 * (distance - self.r);
+        let clearance = (self.v.length() - self.r).abs();
+        let rim_low = clearance > 0.0 && self.top <= 0.7 * clearance;
         // The vertical ray p + t n meets the disk's plane at t = m·v / m·n;
         // the zenith is covered when that point is within r of the centre
         // (decided far from the rim, so f64 suffices: a rim near the
@@ -117,7 +120,7 @@ impl Rim {
         let sin_t1 = (self.top * -self.bottom).max(0.0).sqrt() / rg;
         let t1 = sin_t1.atan2(-f0 / rg);
         if !self.low() {
-            return self.lambert_over_r2(t1);
+            return self.lambert_over_r2(t1, sin_t1, -f0 / rg);
         }
         // The height H = rg(cos t − cos t₁) = 2rg sin((t₁ − t)/2)
         // sin((t₁ + t)/2) as a product (it vanishes at the ends), divided
@@ -171,8 +174,15 @@ impl Rim {
     }
 
     /// Lambert's form for a straddling disk whose visible part reaches
-    /// high: arc + chord, P = |arc + chord|/2, divided by r².
-    fn lambert_over_r2(&self, t1: f64) -> Integral {
+    /// high: arc + chord, P = |arc + chord|/2, divided by r². The chord's
+    /// ends are R_{a,b} = v + r(c e₁ ± s e₂) (s, c = sin t₁, cos t₁ from
+    /// the exact heights); its angle comes from
+    /// R_a × R_b = −2rs (v × e₂ + rc m) and
+    /// R_a·R_b = |v|² + 2rc v·e₁ + r²(c² − s²), without forming the long
+    /// vectors' cross product, so its sign stays right when the chord
+    /// passes close to the receiver (a receiver almost in the plane of a
+    /// disk vastly larger than its distance to it).
+    fn lambert_over_r2(&self, t1: f64, s: f64, c: f64) -> Integral {
         let (v, n, r) = (self.v, self.n, self.r);
         let (e1, e2) = self.frame();
         let w = n.cross(v);
@@ -190,11 +200,9 @@ impl Rim {
             1e-14,
             quadrature::MAX_PANELS,
         );
-        let (st, ct) = t1.sin_cos();
-        let ra = v + (e1 * ct + e2 * st) * r;
-        let rb = v + (e1 * ct - e2 * st) * r;
-        let cross = ra.cross(rb);
-        let chord = cross.length().atan2(ra.dot(rb)) * n.dot(cross).signum();
+        let cross = (v.cross(e2) + self.m * (r * c)) * (-2.0 * r * s);
+        let dot = v.length_squared() + 2.0 * r * c * v.dot(e1) + r * r * (c - s) * (c + s);
+        let chord = cross.length().atan2(dot) * n.dot(cross).signum();
         // The arc integrand carries one factor r.
         let total = r * arc.value + chord;
         let scale = 0.5 / (r * r);
