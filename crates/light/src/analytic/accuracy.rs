@@ -58,6 +58,20 @@ fn polygon_around(center: DVec3, normal: DVec3, shape: usize, spin: f64) -> Vec<
         .collect()
 }
 
+/// The polygons seen from afar: a square (`shape` 0) or a pentagon (2) in
+/// the plane z = const, turned by 0.3·`turn`, or a triangle (1) facing
+/// q·(0.2, −0.3, 0.9); each exactly coplanar in f64.
+fn far_shape(center: DVec3, q: DQuat, shape: usize, turn: usize) -> Vec<DVec3> {
+    if shape == 1 {
+        let facing = (q * DVec3::new(0.2, -0.3, 0.9)).normalize();
+        let mut t = polygon_around(center, facing, 1, 0.3);
+        t.truncate(3);
+        t
+    } else {
+        polygon_around(center, DVec3::Z, shape, 0.3 * turn as f64)
+    }
+}
+
 /// Polygons of size ≈ 1 at distance D = 1 … 1e12 above the receiver's
 /// horizon (elevation 0.3 … 1.2 rad), off the origin. The vertices must be
 /// exactly coplanar in f64 (a rotated square 1e8 away is not, to 1e-9 of
@@ -70,14 +84,7 @@ pub(crate) fn far_polygons() -> Vec<Case> {
         for d in decades(0, 12) {
             for (si, &elev) in [0.3f64, 0.8, 1.2].iter().enumerate() {
                 let center = DVec3::new(1.3, -0.4, 2.0);
-                let verts = if si == 1 {
-                    let facing = (q * DVec3::new(0.2, -0.3, 0.9)).normalize();
-                    let mut t = polygon_around(center, facing, 1, 0.3);
-                    t.truncate(3);
-                    t
-                } else {
-                    polygon_around(center, DVec3::Z, si, 0.3 * ri as f64)
-                };
+                let verts = far_shape(center, q, si, ri);
                 // The receiver sees the polygon's centre at elevation
                 // `elev`, from distance ≈ 2D below it.
                 let n = q * DVec3::Z;
@@ -181,6 +188,38 @@ pub(crate) fn standing_rectangles(kind: Standing, distances: &[f64]) -> Vec<Case
 /// grazing).
 type HalfAngleOf = Box<dyn Fn(&oracle::B) -> oracle::B>;
 
+/// A disk case (radiance 1): the library's value and its quadrature's
+/// error bound against the oracle, with the receiver's normal as given
+/// (`n_in`) to the library and as the receiver stores it to the oracle.
+#[allow(clippy::too_many_arguments)]
+fn disk_case(
+    key: String,
+    label: String,
+    p: DVec3,
+    n_in: DVec3,
+    center: DVec3,
+    m: DVec3,
+    r: f64,
+    emission: Emission,
+) -> Case {
+    let bounded = raw::disk_irradiance_with_error_bound(1.0, p, n_in, center, m, r, emission);
+    Case {
+        key,
+        label,
+        value: raw::disk_irradiance(1.0, p, n_in, center, m, r, emission),
+        exact: oracle::disk(
+            1.0,
+            p,
+            raw::normal(n_in),
+            center,
+            raw::normal(m),
+            r,
+            emission == Emission::TwoSided,
+        ),
+        error_bound: bounded.map_or(f64::INFINITY, |b| b.error_bound),
+    }
+}
+
 /// Lights of size ≈ 1 at distance D = 1e3 … 1e12 (× 2) seen at a grazing
 /// elevation ε = 1e-2 … 1e-10 (their centre's), wholly above the horizon
 /// when ε exceeds their angular size: between the far polygons (ε ≈ 1),
@@ -200,14 +239,7 @@ pub(crate) fn grazing_far_lights() -> Vec<Case> {
                 let center = DVec3::new(1.3, -0.4, 2.0);
                 let p = center - dir * (2.0 * d);
                 for si in 0..3 {
-                    let verts = if si == 1 {
-                        let facing = (q * DVec3::new(0.2, -0.3, 0.9)).normalize();
-                        let mut t = polygon_around(center, facing, 1, 0.3);
-                        t.truncate(3);
-                        t
-                    } else {
-                        polygon_around(center, DVec3::Z, si, 0.3 * ri as f64)
-                    };
+                    let verts = far_shape(center, q, si, ri);
                     out.push(Case {
                         key: format!("D={d:e} elev={elev:e}"),
                         label: format!("polygon {si} D={d:e} elev={elev:e} rot {ri}"),
@@ -218,30 +250,16 @@ pub(crate) fn grazing_far_lights() -> Vec<Case> {
                 }
                 for tilt in [0.3f64, 1.2] {
                     let m = (q * DVec3::new(tilt.sin(), 0.0, tilt.cos())).normalize();
-                    let bounded = raw::disk_irradiance_with_error_bound(
-                        1.0,
+                    out.push(disk_case(
+                        format!("D={d:e} elev={elev:e}"),
+                        format!("disk tilt {tilt} D={d:e} elev={elev:e} rot {ri}"),
                         p,
                         n_in,
                         center,
                         m,
                         0.5,
                         Emission::TwoSided,
-                    );
-                    out.push(Case {
-                        key: format!("D={d:e} elev={elev:e}"),
-                        label: format!("disk tilt {tilt} D={d:e} elev={elev:e} rot {ri}"),
-                        value: raw::disk_irradiance(
-                            1.0,
-                            p,
-                            n_in,
-                            center,
-                            m,
-                            0.5,
-                            Emission::TwoSided,
-                        ),
-                        exact: oracle::disk(1.0, p, n, center, raw::normal(m), 0.5, true),
-                        error_bound: bounded.map_or(f64::INFINITY, |b| b.error_bound),
-                    });
+                    ));
                 }
             }
         }
@@ -284,30 +302,16 @@ pub(crate) fn edge_on_lights() -> Vec<Case> {
                         exact: oracle::polygon(1.0, p, n, &verts, true),
                         error_bound: 0.0,
                     });
-                    let bounded = raw::disk_irradiance_with_error_bound(
-                        1.0,
+                    out.push(disk_case(
+                        format!("δ={delta:e}"),
+                        format!("disk D={d:e} δ={delta:e} elev {elev} rot {ri}"),
                         p,
                         n_in,
                         center,
                         m,
                         0.5,
                         Emission::TwoSided,
-                    );
-                    out.push(Case {
-                        key: format!("δ={delta:e}"),
-                        label: format!("disk D={d:e} δ={delta:e} elev {elev} rot {ri}"),
-                        value: raw::disk_irradiance(
-                            1.0,
-                            p,
-                            n_in,
-                            center,
-                            m,
-                            0.5,
-                            Emission::TwoSided,
-                        ),
-                        exact: oracle::disk(1.0, p, n, center, raw::normal(m), 0.5, true),
-                        error_bound: bounded.map_or(f64::INFINITY, |b| b.error_bound),
-                    });
+                    ));
                 }
             }
         }
@@ -431,22 +435,16 @@ pub(crate) fn disks_across_horizon(fracs: &[f64], distances: &[f64]) -> Vec<Case
                     let target = oracle::B::from(r) * g * oracle::B::from(2.0 * frac - 1.0);
                     let now = nb.dot(&oracle::V::from(c).sub(&oracle::V::from(p)));
                     c[big] += ((target - now) / oracle::B::from(n[big])).to_f64();
-                    let bounded = raw::disk_irradiance_with_error_bound(
-                        1.0,
+                    out.push(disk_case(
+                        format!("D={d:e} frac={frac:e}"),
+                        format!("disk D={d:e} frac={frac:e} tilt {tilt} rot {ri}"),
                         p,
                         n_in,
                         c,
                         facing,
                         r,
                         Emission::OneSided,
-                    );
-                    out.push(Case {
-                        key: format!("D={d:e} frac={frac:e}"),
-                        label: format!("disk D={d:e} frac={frac:e} tilt {tilt} rot {ri}"),
-                        value: raw::disk_irradiance(1.0, p, n_in, c, facing, r, Emission::OneSided),
-                        exact: oracle::disk(1.0, p, n, c, raw::normal(facing), r, false),
-                        error_bound: bounded.map_or(f64::INFINITY, |b| b.error_bound),
-                    });
+                    ));
                 }
             }
         }

@@ -33,9 +33,20 @@
 //!   rounding c − p to f64 would move it by ε|c − p|.
 //! - A disk wholly above the horizon but low relative to its own angular
 //!   size (a far disk just above the horizon) makes n·J a small
-//!   difference of J's components: there the sin²ε contour integral over
-//!   the whole rim is evaluated too, and the one with the smaller
-//!   cancellation factor kept (as for polygons).
+//!   difference of J's components (by κ = (|J_z| + |J_x|)/|n·J| ≈ 1/ε at
+//!   elevation ε): when κ > 8, the sin²ε contour integral over the whole
+//!   rim is evaluated and kept if it cancels by at most 8; otherwise (a far
+//!   disk at an intermediate grazing elevation, where the contour cancels
+//!   by ε/a, a the angular size) n·J is evaluated in double-double from
+//!   the exact c − p and height over the disk's plane, error ~u²κ.
+//! - Ordinary disks (clearly above the horizon, not seen nearly edge-on,
+//!   κ ≤ 8) take the f64 closed form directly, at the old cost.
+//! - Open: a disk cut by the horizon and seen nearly edge-on (the receiver
+//!   within δ of its plane, relative to its distance): the rim integral
+//!   cancels by ~1/δ; measured 4e-13 at δ = 1e-4, and below δ ≈ 1e-6 its
+//!   error bound exceeds [`DISK_RELATIVE_ERROR_LIMIT`] and the answer is
+//!   [`AnalyticError::Unresolved`] (with the value and the bound, which
+//!   holds).
 //! - Lengths are scaled by powers of two (exact), first so that c − p
 //!   cannot overflow, then so that max(|c − p|, R) is in [½, 1].
 
@@ -144,13 +155,16 @@ pub const DISK_RELATIVE_ERROR_LIMIT: f64 = 1e-9;
 /// p with unit normal n.
 ///
 /// Closed form (E = L n·J, module docs) when the disk lies wholly above the
-/// receiver's plane; when the receiver's plane cuts the disk, the contour
-/// integral over the visible arc of the rim in the form that does not
-/// cancel (sin²ε dφ, with no chord term, for low visible parts; Lambert's
-/// cos²ε dφ plus the chord's angle for high ones; see the `rim` module),
-/// by Gauss–Kronrod quadrature bounded to 30 720 evaluations. 0 when the
-/// disk is wholly below the horizon, when `p` is in the disk's plane, or
-/// when a one-sided disk is seen from behind.
+/// receiver's plane (in double-double, or as the rim's sin²ε contour
+/// integral, when it lies low and n·J cancels); when the receiver's plane
+/// cuts the disk, the contour integral over the visible arc of the rim in
+/// the form that does not cancel (sin²ε dφ, with no chord term, for low
+/// visible parts; Lambert's cos²ε dφ plus the chord's angle for high
+/// ones; see the `rim` module), by Gauss–Kronrod quadrature bounded to
+/// 30 720 evaluations. The rim's heights over the receiver's plane are
+/// exact (module docs). 0 when the disk is wholly below the horizon, when
+/// `p` is in the disk's plane, or when a one-sided disk is seen from
+/// behind.
 ///
 /// Lengths are first rescaled by a power of two and then by
 /// max(|c − p|, R), so no intermediate overflows or underflows for any

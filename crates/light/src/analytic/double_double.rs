@@ -362,14 +362,8 @@ mod tests {
     use super::*;
     use crate::analytic::oracle::B;
 
-    /// Relative error of a double-double against a 1024-bit value.
     fn rel(exact: &B, x: Dd) -> f64 {
-        if exact.is_zero() {
-            return x.to_f64().abs();
-        }
-        ((&B::from(x.hi) + &B::from(x.lo) - exact) / exact)
-            .abs()
-            .to_f64()
+        exact.rel_err_dd(x.hi, x.lo)
     }
 
     fn dd(b: &B) -> Dd {

@@ -111,12 +111,7 @@ mod tests {
     use crate::analytic::oracle::{B, V};
 
     fn rel(exact: &B, x: Dd) -> f64 {
-        if exact.is_zero() {
-            return x.to_f64().abs();
-        }
-        ((&B::from(x.hi) + &B::from(x.lo) - exact) / exact)
-            .abs()
-            .to_f64()
+        exact.rel_err_dd(x.hi, x.lo)
     }
 
     /// Sums whose value is 1e-30 … 1e-60 of their terms, and exact zeros,

@@ -43,7 +43,21 @@
 //! forms report their cancellation factor κ = Σ|termᵢ| / |Σ termᵢ| (the
 //! factor by which rounding errors of relative size ε in the terms are
 //! amplified): when the centred sum's κ exceeds 8, the sin² form is
-//! evaluated too and the one with the smaller κ is kept.
+//! evaluated too and the one with the smaller κ is kept if that κ is at
+//! most 64.
+//!
+//! # When both cancel
+//! A far polygon at a grazing elevation ε, between its angular size a
+//! and one radian, cancels in both forms, by 1/ε and by ε/a (≈ 1e6 for
+//! a = 1e-12 at ε = 1e-6), and so does a polygon seen nearly edge-on (its projected
+//! solid angle ∝ the receiver's height δ over its plane, the terms not).
+//! There the centred sum is evaluated again in double-double throughout
+//! (positions relative to the centre and the centre relative to p
+//! exactly, clipping with the exact heights; 106-bit arithmetic, atan2 and
+//! the series of θ − sin θ), so its error is ~u²κ (u² ≈ 1.2e-32): ≤ 1e-14
+//! on the swept classes except a polygon in a plane parallel to the
+//! receiver's seen at a grazing angle δ, where κ ≈ 1/δ² (measured 2.6e-12
+//! at δ = 1e-10). Cost ~2–3 µs per edge, only for those configurations.
 //!
 //! # Heights and clipping
 //! The heights n·(vᵢ − p) are first formed in f64 (n·C + n·aᵢ) with a

@@ -45,8 +45,12 @@ pub fn dome_irradiance(radiance: f64, normal: DVec3, zenith: DVec3) -> Result<f6
 /// `axis` and half-angle γ ∈ (0, π], over a receiver of unit normal `n`:
 /// E = L ∫_{cap ∩ H²(n)} cos θ dω, W/m² (closed form for any tilt,
 /// including caps crossing the horizon; see
-/// [`cap_projected_solid_angle`]). γ = π is the whole sky (E = Lπ),
-/// γ = π/2 a dome.
+/// [`cap_projected_solid_angle`](super::cap_projected_solid_angle)). γ = π is the whole sky (E = Lπ),
+/// γ = π/2 a dome. Caps clearly off the horizon are computed in f64; for
+/// the others cos β is the exact dot product of the given vectors over
+/// their exact lengths, and sin γ, cos γ are double-doubles when the rim
+/// passes close to the horizon (module `cap`), so a cap that barely shows
+/// keeps its digits.
 ///
 /// ```
 /// use glam::DVec3;
@@ -89,10 +93,11 @@ pub fn sky_cap_irradiance(
     );
     let cb = exact_sum::dot(n, a) / (exact_sum::length_f64(n) * exact_sum::length_f64(a));
     // sin γ and cos γ in double-double when the cap's rim passes close to
-    // the horizon (|cos β| within a factor 2 of sin γ), where its depth
-    // sin γ − |cos β| needs them (module `cap`); the f64 values elsewhere.
+    // the horizon (|cos β| / sin γ within 1/8 of 1), where its depth
+    // sin γ − |cos β| needs them (module `cap`); elsewhere the f64 values,
+    // relative error u, leave the depth within 8u.
     let ratio = (cb.to_f64() / sg).abs();
-    let (sg, cg) = if (0.5..=2.0).contains(&ratio) {
+    let (sg, cg) = if (0.875..=8.0 / 7.0).contains(&ratio) {
         Dd::from(half_angle).sin_cos()
     } else {
         (Dd::from(sg.max(0.0)), Dd::from(cg))
