@@ -1,6 +1,6 @@
 //! ns/sample of every warp, RNG included, in f32 and f64, with
 //! `rand_distr::UnitSphere` in the same run as an in-run reference.
-//! Reference figures (DESIGN.md, one thread): pbrt-v4 cosine hemisphere
+//! Reference figures (one thread, this machine class): pbrt-v4 cosine hemisphere
 //! 14.2 ns, uniform cone 17.5 ns, spherical triangle 139 ns, spherical
 //! rectangle 182 ns; Mitsuba 3 vectorised cosine hemisphere 2.7 ns.
 

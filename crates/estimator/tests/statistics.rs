@@ -1,6 +1,6 @@
 //! Streaming statistics: accuracy on adversarial data, exact merges,
 //! thread-count independence, and the honesty of the reported standard
-//! error (DESIGN.md, "Numerics that matter" and "Statistical tests").
+//! error (docs/NUMERICS.md; the statistical-test standard in docs/ARCHITECTURE.md).
 //!
 //! Statistical family (all fixed seeds, so pass/fail is deterministic):
 //! CI coverage at α = 1e-3, mean of z at α = 2.7e-3 (3σ), variance of z at

@@ -19,7 +19,7 @@ macro_rules! disk_impl {
         /// - solid angle from a point: exact to max(1e-15, 4ε) relative by
         ///   a closed form along each ray of a pencil and an exponentially
         ///   convergent periodic trapezoid
-        ///   ([`disk_solid_angle_hs`](crate::solid_angle));
+        ///   ([`disk_solid_angle_hs`]);
         /// - intersection: the plane's, then |p − c|² ≤ R²; the point is
         ///   projected back onto the plane;
         /// - surface parameters (ρ/R, φ/2π) in the disk's [`Frame`].

@@ -3,9 +3,7 @@
 
 use glam::DVec3;
 use lambert_geometry::f64::{unit_vector, Frame};
-use lambert_geometry::validate;
-
-use crate::emitter::EmitterError;
+use lambert_geometry::{validate, GeometryError};
 
 /// A point receiving irradiance E = ∫_{n·ω>0} L(ω) (n·ω) dω, in W/m².
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,7 +19,7 @@ pub struct Receiver {
 impl Receiver {
     /// A receiver at `point` facing `normal` (any non-zero length; it is
     /// normalised). Errors name the field.
-    pub fn new(point: DVec3, normal: DVec3) -> Result<Self, EmitterError> {
+    pub fn new(point: DVec3, normal: DVec3) -> Result<Self, GeometryError> {
         validate::finite3("receiver.point", point)?;
         let normal = unit_vector("receiver.normal", normal)?;
         Ok(Receiver {

@@ -12,6 +12,11 @@ macro_rules! area_impl {
 
         /// A disk (center, unit normal, radius) sampled uniformly by area
         /// through the concentric map (density 1/(πR²) per m²).
+        ///
+        /// Uniform area sampling of a disk and of a parallelogram in 3-D, the
+        /// building blocks of area-sampled lights, built from the shapes of
+        /// `lambert-geometry`. Convert their densities to solid angle with
+        /// [`pdf_area_to_solid_angle`](crate::f64::pdf_area_to_solid_angle).
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct UniformDiskArea {
             center: V3,
@@ -87,6 +92,11 @@ macro_rules! area_impl {
 
         /// A parallelogram corner + s·edge0 + t·edge1, (s, t) ∈ [0, 1]²,
         /// sampled uniformly by area (density 1/|edge0 × edge1| per m²).
+        ///
+        /// Uniform area sampling of a disk and of a parallelogram in 3-D, the
+        /// building blocks of area-sampled lights, built from the shapes of
+        /// `lambert-geometry`. Convert their densities to solid angle with
+        /// [`pdf_area_to_solid_angle`](crate::f64::pdf_area_to_solid_angle).
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct UniformParallelogram {
             corner: V3,

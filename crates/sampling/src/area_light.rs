@@ -40,6 +40,13 @@ macro_rules! area_light_impl {
         /// per m²); a point on the far side, hidden by the sphere itself,
         /// gives no sample.
         ///
+        /// Area sampling of lights: uniform points on the light's surface, their
+        /// density converted to solid angle (p_ω = p_A d²/|cos θ_l|, pbrt-v4
+        /// §4.2.3). Simple and unbiased, but the conversion makes the estimator's
+        /// variance grow without bound as the shading point approaches the light
+        /// (d → 0) or sees it edge-on; prefer the solid-angle samplers where they
+        /// exist.
+        ///
         /// ```
         #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]
         #[doc = concat!("use lambert_sampling::", stringify!($p), "::{LightSampler, SphereAreaSampler};")]
@@ -96,6 +103,13 @@ macro_rules! area_light_impl {
         /// Uniform points on a disk (density 1/(πR²) per m², the
         /// concentric map).
         ///
+        /// Area sampling of lights: uniform points on the light's surface, their
+        /// density converted to solid angle (p_ω = p_A d²/|cos θ_l|, pbrt-v4
+        /// §4.2.3). Simple and unbiased, but the conversion makes the estimator's
+        /// variance grow without bound as the shading point approaches the light
+        /// (d → 0) or sees it edge-on; prefer the solid-angle samplers where they
+        /// exist.
+        ///
         /// ```
         #[doc = concat!("use lambert_geometry::", stringify!($p), "::Disk;")]
         #[doc = concat!("use lambert_sampling::", stringify!($p), "::{DiskAreaSampler, LightSampler};")]
@@ -138,6 +152,25 @@ macro_rules! area_light_impl {
         }
 
         /// Uniform points on a triangle (density 1/A per m²).
+        ///
+        /// Area sampling of lights: uniform points on the light's surface, their
+        /// density converted to solid angle (p_ω = p_A d²/|cos θ_l|, pbrt-v4
+        /// §4.2.3). Simple and unbiased, but the conversion makes the estimator's
+        /// variance grow without bound as the shading point approaches the light
+        /// (d → 0) or sees it edge-on; prefer the solid-angle samplers where they
+        /// exist.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Triangle;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{LightSampler, TriangleAreaSampler};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let t = Triangle::new(", stringify!($v3), "::new(-1.0, -1.0, 1.0), ", stringify!($v3), "::new(1.0, -1.0, 1.0), ", stringify!($v3), "::new(0.0, 1.0, 1.0))?;")]
+        /// let light = TriangleAreaSampler::new(t);
+        #[doc = concat!("let (p, n) = (", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z);")]
+        #[doc = concat!("let s = light.sample(p, n, ", stringify!($v2), "::new(0.5, 0.5)).unwrap();")]
+        /// assert!((light.pdf(p, n, s.direction) / s.pdf - 1.0).abs() < 1e-4);
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct TriangleAreaSampler {
             triangle: Triangle,
@@ -177,6 +210,13 @@ macro_rules! area_light_impl {
         /// Uniform points on a convex polygon: a fan triangle (v₀, vᵢ,
         /// vᵢ₊₁) chosen in proportion to its area, then a uniform point in
         /// it (density 1/A per m²). The fan is built once, with the light.
+        ///
+        /// Area sampling of lights: uniform points on the light's surface, their
+        /// density converted to solid angle (p_ω = p_A d²/|cos θ_l|, pbrt-v4
+        /// §4.2.3). Simple and unbiased, but the conversion makes the estimator's
+        /// variance grow without bound as the shading point approaches the light
+        /// (d → 0) or sees it edge-on; prefer the solid-angle samplers where they
+        /// exist.
         ///
         /// ```
         #[doc = concat!("use lambert_geometry::", stringify!($p), "::ConvexPolygon;")]

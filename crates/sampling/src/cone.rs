@@ -1,17 +1,4 @@
 //! Uniform sampling of the directions in a cone (a spherical cap).
-//!
-//! The cap of half-angle θmax about +z has solid angle Ω = 2π(1 − cos θmax).
-//! The uniform density is p(ω) = 1/Ω per steradian on the cap. With
-//! h = 1 − cos θmax, the inverse-CDF warp (Shirley & Chiu 1997; pbrt-v4
-//! §A.5.4 `SampleUniformCone`) is
-//!
-//! 1 − cos θ = u₀ h,  sin θ = √(u₀h (2 − u₀h)),  φ = 2π u₁.
-//!
-//! Unlike pbrt-v4 (cos θ = lerp(u₀, 1, cos θmax)), every quantity is formed
-//! from h, never from cos θmax, so a cone of θmax = 1e-8 rad is sampled
-//! exactly in f64 and θmax = 1e-5 rad in f32, where cos θmax rounds to 1.
-//! h itself is built without cancellation (DESIGN.md): from sin²θmax as
-//! s²/(1 + √(1 − s²)), from θmax as 2 sin²(θmax/2).
 
 macro_rules! cone_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
@@ -22,9 +9,35 @@ macro_rules! cone_impl {
         /// The uniform density on a cone of directions about +z, described
         /// by h = 1 − cos θmax ∈ (0, 2].
         ///
+        /// The cap of half-angle θmax about +z has solid angle Ω = 2π(1 − cos θmax).
+        /// The uniform density is p(ω) = 1/Ω per steradian on the cap. With
+        /// h = 1 − cos θmax, the inverse-CDF warp (Shirley & Chiu 1997; pbrt-v4
+        /// §A.5.4 `SampleUniformCone`) is
+        ///
+        /// 1 − cos θ = u₀ h,  sin θ = √(u₀h (2 − u₀h)),  φ = 2π u₁.
+        ///
+        /// Unlike pbrt-v4 (cos θ = lerp(u₀, 1, cos θmax)), every quantity is formed
+        /// from h, never from cos θmax, so a cone of θmax = 1e-8 rad is sampled
+        /// exactly in f64 and θmax = 1e-5 rad in f32, where cos θmax rounds to 1.
+        /// h itself is built without cancellation (docs/NUMERICS.md): from sin²θmax as
+        /// s²/(1 + √(1 − s²)), from θmax as 2 sin²(θmax/2).
+        ///
         /// Sample, pdf and inverse are the methods [`UniformCone::sample`],
         /// [`UniformCone::pdf`] and [`UniformCone::invert`]; a cone about
-        /// another axis is used through a [`Frame`].
+        /// another axis is used through a
+        /// [`Frame`](lambert_geometry::f64::Frame).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::UniformCone;")]
+        #[doc = concat!("use glam::", stringify!($v2), ";")]
+        /// // A cap of 1e-5 rad: cos θmax rounds to 1 in f32, 1 − cos θmax does not.
+        /// let cone = UniformCone::from_theta_max(1e-5)?;
+        #[doc = concat!("let w = cone.sample(", stringify!($v2), "::new(0.3, 0.7));")]
+        /// assert!(w.z > 0.0 && cone.pdf(w) > 0.0);
+        /// assert_eq!(cone.pdf(w), 1.0 / cone.solid_angle());
+        #[doc = concat!("assert!((cone.invert(w) - ", stringify!($v2), "::new(0.3, 0.7)).abs().max_element() < 1e-3);")]
+        /// # Ok::<(), lambert_sampling::SamplingError>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct UniformCone {
             one_minus_cos: Real,

@@ -10,6 +10,13 @@ macro_rules! discrete_impl {
         /// u rescaled to [0, 1) within k's interval, so one uniform number both
         /// chooses the piece and samples inside it (pbrt-v4 §A.1, "sample reuse").
         /// `None` when there are no pieces.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::pick_by_cumulative;")]
+        /// // Pieces of weight 1, 2, 1: u = 0.5 lands in the middle of the second.
+        /// assert_eq!(pick_by_cumulative(&[1.0, 3.0, 4.0], 0.5), Some((1, 0.5)));
+        /// assert_eq!(pick_by_cumulative(&[], 0.5), None);
+        /// ```
         #[inline]
         pub fn pick_by_cumulative(cumulative: &[Real], u: Real) -> Option<(usize, Real)> {
             let total = *cumulative.last()?;

@@ -1,8 +1,6 @@
 //! Uniform maps from the unit square to the unit disk: the concentric map
 //! (Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square", in
 //! the single-branch form attributed to Dave Cline) and the polar map.
-//!
-//! Both have density 1/π per unit area on the unit disk.
 
 macro_rules! disk_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
@@ -16,6 +14,14 @@ macro_rules! disk_impl {
         /// φ = (π/4)(b/a) (+π if a < 0); otherwise r = |b| and
         /// φ = π/2 − (π/4)(a/b) (+π if b < 0). r is exactly max(|a|, |b|),
         /// which callers use to form 1 − r² without cancellation.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::concentric_polar;")]
+        #[doc = concat!("use glam::", stringify!($v2), ";")]
+        #[doc = concat!("let (r, s, c) = concentric_polar(", stringify!($v2), "::new(1.0, 0.5));")]
+        /// assert_eq!(r, 1.0);
+        /// assert!((s * s + c * c - 1.0).abs() < 1e-6);
+        /// ```
         #[inline(always)]
         pub fn concentric_polar(u: V2) -> (Real, Real, Real) {
             let a = 2.0 * u.x - 1.0;
@@ -37,6 +43,22 @@ macro_rules! disk_impl {
         /// A point of the unit disk, uniform in area (density 1/π per unit
         /// area), by Shirley and Chiu's concentric map; low distortion, so
         /// stratification of `u` survives.
+        ///
+        /// Uniform maps from the unit square to the unit disk: the concentric map
+        /// (Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square", in
+        /// the single-branch form attributed to Dave Cline) and the polar map.
+        ///
+        /// Both have density 1/π per unit area on the unit disk.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{invert_concentric_disk, pdf_concentric_disk, sample_concentric_disk};")]
+        #[doc = concat!("use glam::", stringify!($v2), ";")]
+        #[doc = concat!("let u = ", stringify!($v2), "::new(0.8, 0.3);")]
+        /// let p = sample_concentric_disk(u);
+        /// assert!(p.length() <= 1.0);
+        #[doc = concat!("assert_eq!(pdf_concentric_disk(p), 1.0 / std::", stringify!($p), "::consts::PI);")]
+        /// assert!((invert_concentric_disk(p) - u).length() < 1e-5);
+        /// ```
         #[inline]
         pub fn sample_concentric_disk(u: V2) -> V2 {
             let (r, s, c) = concentric_polar(u);
@@ -78,6 +100,22 @@ macro_rules! disk_impl {
         /// A point of the unit disk, uniform in area, by the polar map
         /// r = √u₀, φ = 2πu₁ (density 1/π per unit area). Simpler than the
         /// concentric map but it distorts strata near the center.
+        ///
+        /// Uniform maps from the unit square to the unit disk: the concentric map
+        /// (Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square", in
+        /// the single-branch form attributed to Dave Cline) and the polar map.
+        ///
+        /// Both have density 1/π per unit area on the unit disk.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{invert_uniform_disk, pdf_uniform_disk, sample_uniform_disk};")]
+        #[doc = concat!("use glam::", stringify!($v2), ";")]
+        #[doc = concat!("let u = ", stringify!($v2), "::new(0.25, 0.5);")]
+        /// let p = sample_uniform_disk(u);
+        /// assert!((p.length() - 0.5).abs() < 1e-6, "r = √u₀");
+        #[doc = concat!("assert_eq!(pdf_uniform_disk(p), 1.0 / std::", stringify!($p), "::consts::PI);")]
+        /// assert!((invert_uniform_disk(p) - u).length() < 1e-5);
+        /// ```
         #[inline]
         pub fn sample_uniform_disk(u: V2) -> V2 {
             let r = u.x.sqrt();

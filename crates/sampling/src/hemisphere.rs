@@ -1,10 +1,4 @@
 //! Uniform and cosine-weighted hemispheres about +z.
-//!
-//! Uniform: p(ω) = 1/(2π) per steradian for cos θ ≥ 0, by z = 1 − u₀,
-//! φ = 2πu₁ (pbrt-v4 §A.5.2 uses z = u₀; 1 − u₀ keeps u₀ ∈ [0, 1) off the
-//! horizon, so every sample from the half-open square has z > 0). Cosine-weighted: p(ω) = cos θ/π per steradian, by
-//! Malley's method, lifting a concentric-disk sample to the hemisphere
-//! (Shirley & Chiu 1997; pbrt-v4 §A.5.3), which keeps its low distortion.
 
 macro_rules! hemisphere_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
@@ -14,6 +8,22 @@ macro_rules! hemisphere_impl {
 
         /// A direction uniform on the upper hemisphere (cos θ ≥ 0):
         /// cos θ = 1 − u₀, sin θ = √(u₀(2 − u₀)), φ = 2πu₁.
+        ///
+        /// Uniform: p(ω) = 1/(2π) per steradian for cos θ ≥ 0, by z = 1 − u₀,
+        /// φ = 2πu₁ (pbrt-v4 §A.5.2 uses z = u₀; 1 − u₀ keeps u₀ ∈ [0, 1) off the
+        /// horizon, so every sample from the half-open square has z > 0). Cosine-weighted: p(ω) = cos θ/π per steradian, by
+        /// Malley's method, lifting a concentric-disk sample to the hemisphere
+        /// (Shirley & Chiu 1997; pbrt-v4 §A.5.3), which keeps its low distortion.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{invert_uniform_hemisphere, pdf_uniform_hemisphere, sample_uniform_hemisphere};")]
+        #[doc = concat!("use glam::", stringify!($v2), ";")]
+        #[doc = concat!("let u = ", stringify!($v2), "::new(0.4, 0.9);")]
+        /// let w = sample_uniform_hemisphere(u);
+        /// assert!(w.z > 0.0 && (w.length() - 1.0).abs() < 1e-6);
+        #[doc = concat!("assert_eq!(pdf_uniform_hemisphere(w), 0.5 / std::", stringify!($p), "::consts::PI);")]
+        /// assert!((invert_uniform_hemisphere(w) - u).length() < 1e-5);
+        /// ```
         #[inline]
         pub fn sample_uniform_hemisphere(u: V2) -> V3 {
             let z = 1.0 - u.x;
@@ -23,6 +33,15 @@ macro_rules! hemisphere_impl {
 
         /// [`sample_uniform_hemisphere`] over a slice (see
         /// [`sample_cosine_hemisphere_batch`] for why batches are faster).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{sample_uniform_hemisphere, sample_uniform_hemisphere_batch};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let u = [", stringify!($v2), "::new(0.1, 0.2), ", stringify!($v2), "::new(0.7, 0.4)];")]
+        #[doc = concat!("let mut w = [", stringify!($v3), "::ZERO; 2];")]
+        /// sample_uniform_hemisphere_batch(&u, &mut w);
+        /// assert_eq!(w[1], sample_uniform_hemisphere(u[1]));
+        /// ```
         #[inline]
         pub fn sample_uniform_hemisphere_batch(u: &[V2], out: &mut [V3]) {
             for (o, &ui) in out.iter_mut().zip(u) {
@@ -51,10 +70,27 @@ macro_rules! hemisphere_impl {
         /// A direction with density cos θ/π per steradian (Malley's method):
         /// a concentric-disk point (r, φ) lifted to z = √((1 − r)(1 + r)).
         ///
+        /// Uniform: p(ω) = 1/(2π) per steradian for cos θ ≥ 0, by z = 1 − u₀,
+        /// φ = 2πu₁ (pbrt-v4 §A.5.2 uses z = u₀; 1 − u₀ keeps u₀ ∈ [0, 1) off the
+        /// horizon, so every sample from the half-open square has z > 0). Cosine-weighted: p(ω) = cos θ/π per steradian, by
+        /// Malley's method, lifting a concentric-disk sample to the hemisphere
+        /// (Shirley & Chiu 1997; pbrt-v4 §A.5.3), which keeps its low distortion.
+        ///
         /// r is capped at the largest value below 1, so u on the square's
         /// edge (u exactly 0 or 1) gives z ≥ √ε (1.5e-8 in f64, 3.5e-4 in
         /// f32) instead of a horizon direction of pdf 0; the capped set has
         /// probability 0 for u ∈ [0, 1)², so the density is unchanged.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{invert_cosine_hemisphere, pdf_cosine_hemisphere, sample_cosine_hemisphere};")]
+        #[doc = concat!("use glam::", stringify!($v2), ";")]
+        #[doc = concat!("let u = ", stringify!($v2), "::new(0.3, 0.8);")]
+        /// let w = sample_cosine_hemisphere(u);
+        #[doc = concat!("assert!((pdf_cosine_hemisphere(w) - w.z / std::", stringify!($p), "::consts::PI).abs() < 1e-6);")]
+        /// assert!((invert_cosine_hemisphere(w) - u).length() < 1e-4);
+        /// // u on the square's edge still gives a direction of positive density.
+        #[doc = concat!("assert!(pdf_cosine_hemisphere(sample_cosine_hemisphere(", stringify!($v2), "::new(1.0, 0.0))) > 0.0);")]
+        /// ```
         #[inline]
         pub fn sample_cosine_hemisphere(u: V2) -> V3 {
             let (r, s, c) = concentric_polar(u);
@@ -68,6 +104,15 @@ macro_rules! hemisphere_impl {
         /// independent, branch-free samples lets the compiler overlap and
         /// vectorise them, which a sample-at-a-time loop that feeds each
         /// result into the next step cannot.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{sample_cosine_hemisphere, sample_cosine_hemisphere_batch};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let u = [", stringify!($v2), "::new(0.1, 0.2), ", stringify!($v2), "::new(0.7, 0.4)];")]
+        #[doc = concat!("let mut w = [", stringify!($v3), "::ZERO; 2];")]
+        /// sample_cosine_hemisphere_batch(&u, &mut w);
+        /// assert_eq!(w[0], sample_cosine_hemisphere(u[0]));
+        /// ```
         #[inline]
         pub fn sample_cosine_hemisphere_batch(u: &[V2], out: &mut [V3]) {
             for (o, &ui) in out.iter_mut().zip(u) {

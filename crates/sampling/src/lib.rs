@@ -11,7 +11,7 @@
 //! density (per steradian or per square metre), its formula and its source.
 //!
 //! The f64 warps are in [`f64`](mod@f64) (also re-exported at the crate root); the
-//! f32 ones, for path tracers, in [`f32`](mod@f32). Conventions (DESIGN.md): the local
+//! f32 ones, for path tracers, in [`f32`](mod@f32). Conventions: the local
 //! frame has +z as the normal, θ measured from +z, φ from +x; `u ∈ [0, 1)²`,
 //! and `u` exactly 0 or 1 still gives a finite unit vector of positive pdf.
 //!

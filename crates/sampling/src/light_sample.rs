@@ -7,6 +7,17 @@ macro_rules! light_sample_impl {
         /// A direction sampled toward a light, with what a shading loop needs
         /// next: the density per steradian, the point hit on the light, and
         /// its distance from the reference point.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{LightSampler, SphereLightSampler};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let light = SphereLightSampler::new(Sphere::new(", stringify!($v3), "::new(0.0, 0.0, 4.0), 1.0)?);")]
+        #[doc = concat!("let s = light.sample(", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z, ", stringify!($v2), "::new(0.0, 0.0)).unwrap();")]
+        /// // u₀ = 0 is the cone's axis: straight at the sphere's nearest point.
+        /// assert!((s.distance - 3.0).abs() < 1e-5 && (s.point.z - 3.0).abs() < 1e-5);
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct LightSample {
             /// Unit direction from the reference point toward the light.
@@ -21,6 +32,16 @@ macro_rules! light_sample_impl {
 
         /// A point sampled on a surface, with its unit normal and its
         /// density per unit area (m⁻²).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Triangle;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::UniformTriangle;")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let t = Triangle::new(", stringify!($v3), "::ZERO, ", stringify!($v3), "::X, ", stringify!($v3), "::Y)?;")]
+        #[doc = concat!("let s = UniformTriangle::new(&t).sample(", stringify!($v2), "::new(0.3, 0.3));")]
+        #[doc = concat!("assert_eq!((s.normal, s.pdf_area), (", stringify!($v3), "::Z, 2.0));")]
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct PointSample {
             /// The point.
@@ -40,6 +61,16 @@ macro_rules! light_sample_impl {
         /// Returns 0 (not ∞) when the surface is seen exactly edge-on or the
         /// point coincides with the reference: such a sample subtends no
         /// solid angle and carries no radiance, and callers skip pdf 0.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::pdf_area_to_solid_angle;")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        /// // A point 2 m straight above, facing down: p_ω = p_A d² / cos θ = 4 p_A.
+        #[doc = concat!("let p = pdf_area_to_solid_angle(0.5, ", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z * 2.0, -", stringify!($v3), "::Z);")]
+        /// assert_eq!(p, 2.0);
+        /// // Seen edge-on: no solid angle, density 0 (not ∞).
+        #[doc = concat!("assert_eq!(pdf_area_to_solid_angle(0.5, ", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z * 2.0, ", stringify!($v3), "::X), 0.0);")]
+        /// ```
         #[inline]
         pub fn pdf_area_to_solid_angle(
             pdf_area: Real,

@@ -1,16 +1,4 @@
 //! The light-sampling interface a path tracer calls at every shading point.
-//!
-//! A light sampler is built once per light, from the light's shape, and is
-//! then asked, at any shading point (a reference point and the unit normal
-//! there), for a direction toward the light: the [`LightSample`]'s unit
-//! direction, the point it reaches on the light, the distance to that point
-//! (for the shadow ray) and the density of the direction per steradian.
-//! [`LightSampler::pdf`] gives the same density for a direction found by
-//! another technique (BSDF sampling), as multiple importance sampling needs
-//! (Veach & Guibas 1995). Neither call allocates.
-//!
-//! Samplers that draw points by area convert the density to solid angle,
-//! p_ω = p_A d²/|cos θ_l| (pbrt-v4 §4.2.3).
 
 macro_rules! light_sampler_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
@@ -18,7 +6,19 @@ macro_rules! light_sampler_impl {
         use lambert_geometry::precision::$p::{Real, V2, V3};
 
         /// A light sampler: built once per light, sampled at any shading
-        /// point (see the [module docs](self)).
+        /// point.
+        ///
+        /// A light sampler is built once per light, from the light's shape, and is
+        /// then asked, at any shading point (a reference point and the unit normal
+        /// there), for a direction toward the light: the [`LightSample`]'s unit
+        /// direction, the point it reaches on the light, the distance to that point
+        /// (for the shadow ray) and the density of the direction per steradian.
+        /// [`LightSampler::pdf`] gives the same density for a direction found by
+        /// another technique (BSDF sampling), as multiple importance sampling needs
+        /// (Veach & Guibas 1995). Neither call allocates.
+        ///
+        /// Samplers that draw points by area convert the density to solid angle,
+        /// p_ω = p_A d²/|cos θ_l| (pbrt-v4 §4.2.3).
         ///
         /// Both methods take the shading point's unit `normal`: a sampler
         /// returns `None` (and density 0) when the light lies wholly below
@@ -57,6 +57,14 @@ macro_rules! light_sampler_impl {
         /// the direction and distance to the point and the density
         /// converted to solid angle; `None` when the point subtends no
         /// solid angle (seen edge-on, or at the reference point).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{seen_from, PointSample};")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        #[doc = concat!("let s = PointSample { point: ", stringify!($v3), "::Z * 2.0, normal: -", stringify!($v3), "::Z, pdf_area: 0.5 };")]
+        #[doc = concat!("let l = seen_from(", stringify!($v3), "::ZERO, s).unwrap();")]
+        #[doc = concat!("assert_eq!((l.direction, l.distance, l.pdf), (", stringify!($v3), "::Z, 2.0, 2.0));")]
+        /// ```
         #[inline]
         pub fn seen_from(reference: V3, s: PointSample) -> Option<LightSample> {
             let to = s.point - reference;

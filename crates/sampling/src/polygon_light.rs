@@ -18,6 +18,21 @@ macro_rules! polygon_light_impl {
         /// its solid angle and sampled by Arvo's method (1995) with the
         /// choosing number reused. Fan triangles that are degenerate seen
         /// from the point are skipped.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::ConvexPolygon;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{PolygonLightSampler, PolygonSolidAngle};")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        /// let square = ConvexPolygon::new(vec![
+        #[doc = concat!("    ", stringify!($v3), "::new(-1.0, -1.0, 2.0), ", stringify!($v3), "::new(1.0, -1.0, 2.0),")]
+        #[doc = concat!("    ", stringify!($v3), "::new(1.0, 1.0, 2.0), ", stringify!($v3), "::new(-1.0, 1.0, 2.0),")]
+        /// ])?;
+        #[doc = concat!("let at = PolygonLightSampler::new(square).at(", stringify!($v3), "::ZERO);")]
+        /// assert!(matches!(at, PolygonSolidAngle::Rectangle(_)));
+        #[doc = concat!("let s = at.sample(", stringify!($v2), "::new(0.5, 0.5)).unwrap();")]
+        /// assert_eq!(at.pdf(s.direction), s.pdf);
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
         #[derive(Clone, Debug, PartialEq)]
         pub enum PolygonSolidAngle {
             /// A rectangle's spherical rectangle.

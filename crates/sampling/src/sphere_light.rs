@@ -1,20 +1,4 @@
 //! Solid-angle sampling of a sphere seen from a point outside it.
-//!
-//! A sphere of radius r whose center is at distance d from the reference
-//! point subtends the cone sin²θmax = (r/d)², so directions are sampled
-//! uniformly in that cone ([`UniformCone`](crate::f64::UniformCone)), density 1/(2π(1 − cos θmax))
-//! per steradian (Shirley, Wang and Zimmerman 1996, "Monte Carlo techniques
-//! for direct lighting calculations"; pbrt-v4 §6.2.4). 1 − cos θmax is
-//! formed as s²/(1 + cos θmax) with cos θmax = √((d − r)(d + r))/d, so
-//! neither tiny, distant spheres nor nearly touching ones lose precision.
-//!
-//! The point on the sphere follows from the triangle (reference, center,
-//! point): the angle γ₀ = asin(sin θ / sin θmax) gives the angle at the
-//! center α = γ₀ − θ, and the point is center + r·(sin α, cos α) in the
-//! frame pointing back to the reference (all absolute errors O(r ε), even
-//! 1e6 radii away). The distance along the direction is
-//! t = (d − r)(d + r) / (d (cos θ + √(sin²θmax − sin²θ))), the near root of
-//! the ray–sphere quadratic written without cancellation.
 
 macro_rules! sphere_light_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
@@ -29,6 +13,35 @@ macro_rules! sphere_light_impl {
 
         /// Solid-angle sampling of the sphere (`center`, `radius`) as seen
         /// from `reference`; see the module docs for the formulas.
+        ///
+        /// A sphere of radius r whose center is at distance d from the reference
+        /// point subtends the cone sin²θmax = (r/d)², so directions are sampled
+        /// uniformly in that cone ([`UniformCone`](crate::f64::UniformCone)), density 1/(2π(1 − cos θmax))
+        /// per steradian (Shirley, Wang and Zimmerman 1996, "Monte Carlo techniques
+        /// for direct lighting calculations"; pbrt-v4 §6.2.4). 1 − cos θmax is
+        /// formed as s²/(1 + cos θmax) with cos θmax = √((d − r)(d + r))/d, so
+        /// neither tiny, distant spheres nor nearly touching ones lose precision.
+        ///
+        /// The point on the sphere follows from the triangle (reference, center,
+        /// point): the angle γ₀ = asin(sin θ / sin θmax) gives the angle at the
+        /// center α = γ₀ − θ, and the point is center + r·(sin α, cos α) in the
+        /// frame pointing back to the reference (all absolute errors O(r ε), even
+        /// 1e6 radii away). The distance along the direction is
+        /// t = (d − r)(d + r) / (d (cos θ + √(sin²θmax − sin²θ))), the near root of
+        /// the ray–sphere quadratic written without cancellation.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::SphereSolidAngle;")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        /// // A sphere 1e6 away: its cone is 1e-6 rad, sampled exactly.
+        #[doc = concat!("let far = Sphere::new(", stringify!($v3), "::new(0.0, 0.0, 1e6), 1.0)?;")]
+        #[doc = concat!("let cone = SphereSolidAngle::new(", stringify!($v3), "::ZERO, &far)?;")]
+        #[doc = concat!("let s = cone.sample(", stringify!($v2), "::new(1.0, 0.25));")]
+        /// assert!(s.direction.z > 0.0 && cone.pdf(s.direction) == s.pdf);
+        /// assert!(((s.point - far.center()).length() - 1.0).abs() < 1e-1);
+        /// # Ok::<(), Box<dyn std::error::Error>>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct SphereSolidAngle {
             frame: Frame,

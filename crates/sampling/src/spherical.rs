@@ -12,6 +12,14 @@ macro_rules! spherical_impl {
         /// algebra for a unit vector, so directions a few 1e-8 rad from the
         /// axis keep full relative precision even in f32; for w_z ≤ 0 the
         /// direct difference has no cancellation.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::one_minus_cos_theta;")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        /// // 1e-8 rad off the axis: 5e-17, where 1 − cos θ computed directly is 0.
+        #[doc = concat!("let w = ", stringify!($v3), "::new(1e-8, 0.0, 1.0).normalize();")]
+        /// assert!((one_minus_cos_theta(w) / 5e-17 - 1.0).abs() < 1e-6);
+        /// ```
         #[inline]
         pub fn one_minus_cos_theta(w: V3) -> Real {
             if w.z > 0.0 {
@@ -23,6 +31,13 @@ macro_rules! spherical_impl {
 
         /// φ/(2π) ∈ [0, 1) of `w` (the azimuth as a fraction of a turn);
         /// 0 on the axis.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::azimuth_fraction;")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        #[doc = concat!("assert_eq!(azimuth_fraction(", stringify!($v3), "::new(0.0, 1.0, 0.0)), 0.25);")]
+        #[doc = concat!("assert_eq!(azimuth_fraction(", stringify!($v3), "::Z), 0.0);")]
+        /// ```
         #[inline]
         pub fn azimuth_fraction(w: V3) -> Real {
             let f = w.y.atan2(w.x) / (2.0 * PI);
@@ -37,6 +52,12 @@ macro_rules! spherical_impl {
 
         /// The unit vector with sin θ, cos θ and azimuth fraction `phi_u`
         /// (φ = 2π·phi_u) in the local frame.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::direction_from;")]
+        /// let w = direction_from(1.0, 0.0, 0.25);
+        /// assert!((w.y - 1.0).abs() < 1e-6 && w.x.abs() < 1e-6);
+        /// ```
         #[inline(always)]
         pub fn direction_from(sin_theta: Real, cos_theta: Real, phi_u: Real) -> V3 {
             let (s, c) = sin_cos_2pi(phi_u);

@@ -3,48 +3,6 @@
 //! Area-Preserving Parametrization for Spherical Rectangles", EGSR 2013,
 //! rewritten so that it has no cancellation for tiny, distant, grazing or
 //! huge rectangles, and with its inverse.
-//!
-//! # Frame and strips
-//! In Ureña's local frame (x along `edge0`, y along `edge1`, the reference
-//! point at the origin, the rectangle at z = −d, d > 0) the rectangle is
-//! [x₀, x₁] × [y₀, y₁]. Let T(x) be the solid angle of the half-strip
-//! [x, ∞) × [y₀, y₁] and T′(x) that of (−∞, x] × [y₀, y₁]; T + T′ = 2ψ with
-//! ψ = φ₁ − φ₀, φᵢ = atan(yᵢ/d). Seen from the origin the half-strip is the
-//! spherical triangle (x, y₀, −d), (x, y₁, −d), (1, 0, 0), and Van Oosterom &
-//! Strackee give, with rᵢ = √(x² + yᵢ² + d²),
-//!
-//! T(x) = 2 atan2(d (y₁ − y₀), (r₀ + x)(r₁ + x) + y₀y₁ + d²),
-//!
-//! where rᵢ + x = (yᵢ² + d²)/(rᵢ − x) for x < 0; T′(x) is T(−x).
-//!
-//! # Sampling x (Ureña's first step, rewritten)
-//! The sub-rectangle [x₀, xᵤ] has solid angle u₀S, so T(xᵤ) = T(x₁) + (1−u₀)S
-//! and T′(xᵤ) = T′(x₀) + u₀S — sums of non-negative terms, with S itself the
-//! Van Oosterom–Strackee solid angle of the two triangles (not
-//! g₀+g₁+g₂+g₃−2π, which cancels for small rectangles: pbrt-v4 falls back to
-//! area sampling, with a wrong pdf, below 1e-3 sr). Ureña's
-//! fᵤ = (cos aᵤ b₀ − b₁)/sin aᵤ and xᵤ = −cᵤz₀/√(1 − cᵤ²) reduce (we derived
-//! and the tests check) to
-//!
-//! xᵤ = d sin β / √N,  β = (T′ − T)/2,
-//! N = 4 sin(T/2) sin(T′/2) cos(φ₁ − T/2) cos(φ₁ − T′/2),
-//!
-//! every factor positive. cos(φ₁ − T/2) is evaluated as sin of the smaller of
-//! φ̄₁ + T/2 and φ̃₀ + T′/2 (φ̄₁ = atan2(d, y₁), φ̃₀ = atan2(d, −y₀), the two
-//! arguments sum to π), likewise cos(φ₁ − T′/2) = sin(min(φ̄₁ + T′/2,
-//! φ̃₀ + T/2)), and sin(T/2) as sin(φ̄₁ + φ̃₀ + T′/2) when T > π: no
-//! argument near a zero of the function is ever formed by subtraction. (The
-//! brief's route via fᵤ needs 1 − cᵤ² ∝ fᵤ² − cos²φ₀, which cancels when xᵤ
-//! is far from the foot of the perpendicular, i.e. for grazing rectangles.)
-//!
-//! # Sampling y (Ureña's second step)
-//! On the line x = xᵤ, with δ² = xᵤ² + d², hᵢ = yᵢ/√(δ² + yᵢ²) and
-//! h = h₀ + u₁(h₁ − h₀), y = h δ/√(1 − h²). Here h₁ − h₀ =
-//! (y₁−y₀)(y₁+y₀)δ²/(R₀R₁(y₁R₀ + y₀R₁)) when y₀, y₁ have the same sign (a
-//! direct difference of opposite-sign terms otherwise), and
-//! 1 − h² = [(1 − h₁) + (1−u₁)(h₁−h₀)]·[(1 + h₀) + u₁(h₁−h₀)] with
-//! 1 − h₁ = δ²/(R₁(R₁+y₁)) for y₁ > 0 and 1 + h₀ = δ²/(R₀(R₀−y₀)) for
-//! y₀ < 0: again only sums of non-negative terms.
 
 macro_rules! spherical_rectangle_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
@@ -133,6 +91,67 @@ macro_rules! spherical_rectangle_impl {
         /// at a point: p(ω) = 1/S per steradian inside, 0 outside (Ureña,
         /// Fajardo & King 2013, rewritten without cancellation and without
         /// pbrt-v4's area-sampling fallback; see the module docs).
+        ///
+        /// Uniform sampling of the directions subtended by a rectangle: the
+        /// area-preserving parametrization of Ureña, Fajardo & King, "An
+        /// Area-Preserving Parametrization for Spherical Rectangles", EGSR 2013,
+        /// rewritten so that it has no cancellation for tiny, distant, grazing or
+        /// huge rectangles, and with its inverse.
+        ///
+        /// # Frame and strips
+        /// In Ureña's local frame (x along `edge0`, y along `edge1`, the reference
+        /// point at the origin, the rectangle at z = −d, d > 0) the rectangle is
+        /// [x₀, x₁] × [y₀, y₁]. Let T(x) be the solid angle of the half-strip
+        /// [x, ∞) × [y₀, y₁] and T′(x) that of (−∞, x] × [y₀, y₁]; T + T′ = 2ψ with
+        /// ψ = φ₁ − φ₀, φᵢ = atan(yᵢ/d). Seen from the origin the half-strip is the
+        /// spherical triangle (x, y₀, −d), (x, y₁, −d), (1, 0, 0), and Van Oosterom &
+        /// Strackee give, with rᵢ = √(x² + yᵢ² + d²),
+        ///
+        /// T(x) = 2 atan2(d (y₁ − y₀), (r₀ + x)(r₁ + x) + y₀y₁ + d²),
+        ///
+        /// where rᵢ + x = (yᵢ² + d²)/(rᵢ − x) for x < 0; T′(x) is T(−x).
+        ///
+        /// # Sampling x (Ureña's first step, rewritten)
+        /// The sub-rectangle [x₀, xᵤ] has solid angle u₀S, so T(xᵤ) = T(x₁) + (1−u₀)S
+        /// and T′(xᵤ) = T′(x₀) + u₀S — sums of non-negative terms, with S itself the
+        /// Van Oosterom–Strackee solid angle of the two triangles (not
+        /// g₀+g₁+g₂+g₃−2π, which cancels for small rectangles: pbrt-v4 falls back to
+        /// area sampling, with a wrong pdf, below 1e-3 sr). Ureña's
+        /// fᵤ = (cos aᵤ b₀ − b₁)/sin aᵤ and xᵤ = −cᵤz₀/√(1 − cᵤ²) reduce (we derived
+        /// and the tests check) to
+        ///
+        /// xᵤ = d sin β / √N,  β = (T′ − T)/2,
+        /// N = 4 sin(T/2) sin(T′/2) cos(φ₁ − T/2) cos(φ₁ − T′/2),
+        ///
+        /// every factor positive. cos(φ₁ − T/2) is evaluated as sin of the smaller of
+        /// φ̄₁ + T/2 and φ̃₀ + T′/2 (φ̄₁ = atan2(d, y₁), φ̃₀ = atan2(d, −y₀), the two
+        /// arguments sum to π), likewise cos(φ₁ − T′/2) = sin(min(φ̄₁ + T′/2,
+        /// φ̃₀ + T/2)), and sin(T/2) as sin(φ̄₁ + φ̃₀ + T′/2) when T > π: no
+        /// argument near a zero of the function is ever formed by subtraction. (The
+        /// brief's route via fᵤ needs 1 − cᵤ² ∝ fᵤ² − cos²φ₀, which cancels when xᵤ
+        /// is far from the foot of the perpendicular, i.e. for grazing rectangles.)
+        ///
+        /// # Sampling y (Ureña's second step)
+        /// On the line x = xᵤ, with δ² = xᵤ² + d², hᵢ = yᵢ/√(δ² + yᵢ²) and
+        /// h = h₀ + u₁(h₁ − h₀), y = h δ/√(1 − h²). Here h₁ − h₀ =
+        /// (y₁−y₀)(y₁+y₀)δ²/(R₀R₁(y₁R₀ + y₀R₁)) when y₀, y₁ have the same sign (a
+        /// direct difference of opposite-sign terms otherwise), and
+        /// 1 − h² = [(1 − h₁) + (1−u₁)(h₁−h₀)]·[(1 + h₀) + u₁(h₁−h₀)] with
+        /// 1 − h₁ = δ²/(R₁(R₁+y₁)) for y₁ > 0 and 1 + h₀ = δ²/(R₀(R₀−y₀)) for
+        /// y₀ < 0: again only sums of non-negative terms.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::SphericalRectangle;")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        /// // A face of the cube [−1, 1]³ seen from its centre: 4π/6 sr.
+        #[doc = concat!("let r = SphericalRectangle::new(", stringify!($v3), "::ZERO, ", stringify!($v3), "::new(-1.0, -1.0, 1.0), ", stringify!($v3), "::X * 2.0, ", stringify!($v3), "::Y * 2.0)?;")]
+        #[doc = concat!("assert!((r.solid_angle() - 4.0 * std::", stringify!($p), "::consts::PI / 6.0).abs() < 1e-5);")]
+        #[doc = concat!("let u = ", stringify!($v2), "::new(0.2, 0.9);")]
+        /// let d = r.sample(u);
+        /// assert_eq!(r.pdf(d.direction), d.pdf);
+        /// assert!((r.invert(d.direction) - u).length() < 1e-4);
+        /// # Ok::<(), lambert_sampling::SamplingError>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct SphericalRectangle {
             /// Reference point and the corner.

@@ -3,47 +3,6 @@
 //! triangles", SIGGRAPH 1995, with its inverse (pbrt-v4's
 //! `InvertSphericalTriangleSample`), rewritten so that tiny, sliver and
 //! near-hemisphere triangles keep full precision in f32 and f64.
-//!
-//! # Solid angle
-//! Van Oosterom & Strackee, "The solid angle of a plane triangle", IEEE
-//! Trans. Biomed. Eng. 30(2), 1983: with Rᵢ = vᵢ − p and rᵢ = |Rᵢ|,
-//!
-//! tan(Ω/2) = |R₀·(R₁×R₂)| / (r₀r₁r₂ + (R₀·R₁)r₂ + (R₀·R₂)r₁ + (R₁·R₂)r₀),
-//!
-//! evaluated as Ω = 2 atan2(num, den) (den ≤ 0 for triangles above a
-//! hemisphere's worth of area), with the triple product taken from the
-//! edges, R₀·((v₁−v₀)×(v₂−v₀)), which has no cancellation. The angle excess
-//! α+β+γ−π (pbrt-v4) loses ~1e-3 relative in f32 at Ω ≈ 1e-4 sr and is 0
-//! below ~1e-8 sr; it is used nowhere here.
-//!
-//! # Sampling (Arvo's construction, cancellation-free)
-//! With A, B, C the unit vertex directions, α the angle at A and c the arc
-//! AB, the sub-triangle A B C′ of area Â = u₀Ω has its vertex C′ on the arc
-//! AC at the arc length b′ given by the area formula for two sides and the
-//! included angle, tan(Â/2) = tan(b′/2)tan(c/2) sin α / (1 + tan(b′/2)tan(c/2)
-//! cos α), solved for b′:
-//!
-//! tan(b′/2) = sin(Â/2) (1 + cos c) / (sin c · sin(α − Â/2)).
-//!
-//! With X = sin c · sin(α − Â/2) ≥ 0 and Y = sin(Â/2)(1 + cos c) ≥ 0 this
-//! gives cos b′ = (X−Y)(X+Y)/(X²+Y²), sin b′ = 2XY/(X²+Y²) and
-//! 1 − cos b′ = 2Y²/(X²+Y²): only products and sums of non-negative terms.
-//! It equals Arvo's cos b′ (and the form 2sin²(Â/2)(1+cos c) /
-//! [2sin²(Â/2) + sin(α−Â) sin α (1−cos c)], whose denominator cancels when
-//! Â > α); the tests check both identities in f64. Because Ω < 2α for every
-//! spherical triangle, α − Â/2 ∈ (0, α]; when α > π/2, sin(α − Â/2) is
-//! evaluated as sin α cos(Â/2) − cos α sin(Â/2) (two non-negative terms), so
-//! slivers with α → π keep their relative precision.
-//!
-//! Then C′ = cos b′ A + sin b′ T_AC (T_AC the unit tangent at A towards C),
-//! and w is uniform in 1 − cos θ on the arc B C′:
-//! z = 1 − cos θ = u₁ |C′ − B|²/2, sin θ = √(z(2 − z)) with
-//! 2 − z = |C′ + B|²/2 + (1 − u₁)|C′ − B|²/2 (no cancellation near θ = π),
-//! w = cos θ B + sin θ normalize((C′ − B) + B|C′ − B|²/2).
-//!
-//! The edge normals and the tangent at A are built from the input points'
-//! edge vectors (Rᵢ × (vⱼ − vᵢ)), not from the cross product of nearly equal
-//! unit vectors, so they are accurate to a few ulps for tiny triangles.
 
 macro_rules! spherical_triangle_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
@@ -57,10 +16,70 @@ macro_rules! spherical_triangle_impl {
         /// spherical triangle, 0 outside (Arvo 1995, rewritten without
         /// cancellation; see the module docs).
         ///
+        /// Uniform sampling of the directions subtended by a triangle: the
+        /// spherical triangle warp of Arvo, "Stratified sampling of spherical
+        /// triangles", SIGGRAPH 1995, with its inverse (pbrt-v4's
+        /// `InvertSphericalTriangleSample`), rewritten so that tiny, sliver and
+        /// near-hemisphere triangles keep full precision in f32 and f64.
+        ///
+        /// # Solid angle
+        /// Van Oosterom & Strackee, "The solid angle of a plane triangle", IEEE
+        /// Trans. Biomed. Eng. 30(2), 1983: with Rᵢ = vᵢ − p and rᵢ = |Rᵢ|,
+        ///
+        /// tan(Ω/2) = |R₀·(R₁×R₂)| / (r₀r₁r₂ + (R₀·R₁)r₂ + (R₀·R₂)r₁ + (R₁·R₂)r₀),
+        ///
+        /// evaluated as Ω = 2 atan2(num, den) (den ≤ 0 for triangles above a
+        /// hemisphere's worth of area), with the triple product taken from the
+        /// edges, R₀·((v₁−v₀)×(v₂−v₀)), which has no cancellation. The angle excess
+        /// α+β+γ−π (pbrt-v4) loses ~1e-3 relative in f32 at Ω ≈ 1e-4 sr and is 0
+        /// below ~1e-8 sr; it is used nowhere here.
+        ///
+        /// # Sampling (Arvo's construction, cancellation-free)
+        /// With A, B, C the unit vertex directions, α the angle at A and c the arc
+        /// AB, the sub-triangle A B C′ of area Â = u₀Ω has its vertex C′ on the arc
+        /// AC at the arc length b′ given by the area formula for two sides and the
+        /// included angle, tan(Â/2) = tan(b′/2)tan(c/2) sin α / (1 + tan(b′/2)tan(c/2)
+        /// cos α), solved for b′:
+        ///
+        /// tan(b′/2) = sin(Â/2) (1 + cos c) / (sin c · sin(α − Â/2)).
+        ///
+        /// With X = sin c · sin(α − Â/2) ≥ 0 and Y = sin(Â/2)(1 + cos c) ≥ 0 this
+        /// gives cos b′ = (X−Y)(X+Y)/(X²+Y²), sin b′ = 2XY/(X²+Y²) and
+        /// 1 − cos b′ = 2Y²/(X²+Y²): only products and sums of non-negative terms.
+        /// It equals Arvo's cos b′ (and the form 2sin²(Â/2)(1+cos c) /
+        /// [2sin²(Â/2) + sin(α−Â) sin α (1−cos c)], whose denominator cancels when
+        /// Â > α); the tests check both identities in f64. Because Ω < 2α for every
+        /// spherical triangle, α − Â/2 ∈ (0, α]; when α > π/2, sin(α − Â/2) is
+        /// evaluated as sin α cos(Â/2) − cos α sin(Â/2) (two non-negative terms), so
+        /// slivers with α → π keep their relative precision.
+        ///
+        /// Then C′ = cos b′ A + sin b′ T_AC (T_AC the unit tangent at A towards C),
+        /// and w is uniform in 1 − cos θ on the arc B C′:
+        /// z = 1 − cos θ = u₁ |C′ − B|²/2, sin θ = √(z(2 − z)) with
+        /// 2 − z = |C′ + B|²/2 + (1 − u₁)|C′ − B|²/2 (no cancellation near θ = π),
+        /// w = cos θ B + sin θ normalize((C′ − B) + B|C′ − B|²/2).
+        ///
+        /// The edge normals and the tangent at A are built from the input points'
+        /// edge vectors (Rᵢ × (vⱼ − vᵢ)), not from the cross product of nearly equal
+        /// unit vectors, so they are accurate to a few ulps for tiny triangles.
+        ///
         /// Internally the vertices are ordered so that A·(B×C) > 0: A is
         /// always `v0`; `v1` and `v2` are swapped if the triangle is seen
         /// clockwise. `sample` and `invert` are inverse to each other for
         /// that order.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::SphericalTriangle;")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        /// // An octant of the sphere: 4π/8 sr.
+        #[doc = concat!("let t = SphericalTriangle::new(", stringify!($v3), "::ZERO, ", stringify!($v3), "::X, ", stringify!($v3), "::Y, ", stringify!($v3), "::Z)?;")]
+        #[doc = concat!("assert!((t.solid_angle() - std::", stringify!($p), "::consts::FRAC_PI_2).abs() < 1e-6);")]
+        #[doc = concat!("let u = ", stringify!($v2), "::new(0.6, 0.3);")]
+        /// let d = t.sample(u);
+        /// assert!(d.direction.min_element() >= 0.0 && t.pdf(d.direction) == d.pdf);
+        /// assert!((t.invert(d.direction) - u).length() < 1e-4);
+        /// # Ok::<(), lambert_sampling::SamplingError>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct SphericalTriangle {
             /// Unit vertex directions, with a·(b×c) > 0.

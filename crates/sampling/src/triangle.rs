@@ -1,8 +1,4 @@
 //! Uniform sampling of a planar triangle by area.
-//!
-//! Barycentrics b₀ = 1 − √u₀, b₁ = u₁√u₀ (Osada, Funkhouser, Chazelle and
-//! Dobkin 2002, "Shape Distributions", eq. 1; Turk 1990), density 1/A per
-//! unit area, inverse u₀ = (1 − b₀)², u₁ = b₁/(1 − b₀).
 
 macro_rules! triangle_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
@@ -11,6 +7,22 @@ macro_rules! triangle_impl {
         use lambert_geometry::$p::Triangle;
 
         /// A planar triangle sampled uniformly by area (density 1/A per m²).
+        ///
+        /// Barycentrics b₀ = 1 − √u₀, b₁ = u₁√u₀ (Osada, Funkhouser, Chazelle and
+        /// Dobkin 2002, "Shape Distributions", eq. 1; Turk 1990), density 1/A per
+        /// unit area, inverse u₀ = (1 − b₀)², u₁ = b₁/(1 − b₀).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Triangle;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::UniformTriangle;")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let area = UniformTriangle::new(&Triangle::new(", stringify!($v3), "::ZERO, ", stringify!($v3), "::X * 2.0, ", stringify!($v3), "::Y)?);")]
+        #[doc = concat!("let u = ", stringify!($v2), "::new(0.36, 0.5);")]
+        /// let s = area.sample(u);
+        /// assert_eq!(area.pdf(s.point), 1.0);
+        /// assert!((area.invert(s.point) - u).length() < 1e-5);
+        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct UniformTriangle {
             v0: V3,

@@ -21,6 +21,17 @@ macro_rules! triangle_light_impl {
         /// with the plane needed to turn a direction into the point it
         /// reaches: uniform in solid angle (Arvo 1995, see
         /// [`SphericalTriangle`]).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_geometry::", stringify!($p), "::Triangle;")]
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::TriangleSolidAngle;")]
+        #[doc = concat!("use glam::{", stringify!($v2), ", ", stringify!($v3), "};")]
+        #[doc = concat!("let t = Triangle::new(", stringify!($v3), "::new(-1.0, -1.0, 1.0), ", stringify!($v3), "::new(1.0, -1.0, 1.0), ", stringify!($v3), "::new(0.0, 1.0, 1.0))?;")]
+        #[doc = concat!("let at = TriangleSolidAngle::new(", stringify!($v3), "::ZERO, &t)?;")]
+        #[doc = concat!("let s = at.sample(", stringify!($v2), "::new(0.5, 0.5));")]
+        /// assert!((s.point.z - 1.0).abs() < 1e-6 && at.pdf(s.direction) == s.pdf);
+        /// # Ok::<(), Box<dyn std::error::Error>>(())
+        /// ```
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct TriangleSolidAngle {
             spherical: SphericalTriangle,

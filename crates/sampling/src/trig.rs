@@ -1,20 +1,4 @@
 //! sin and cos of 2πu for u ∈ [0, 1], with exact range reduction.
-//!
-//! Every warp turns a uniform u into an azimuth φ = 2πu. The standard
-//! library's `sin_cos` calls libm twice, does a general (Payne–Hanek or
-//! Cody–Waite) reduction by π/2 that we do not need, and cannot be inlined
-//! or vectorised; on this project's machine it is most of the cost of a
-//! cosine-hemisphere sample. Because the argument is a fraction of a turn,
-//! the reduction is exact here: q = round(4u) is the quadrant and
-//! r = 4u − q ∈ [−½, ½] is computed without rounding error (Sterbenz), so
-//! x = (π/2) r ∈ [−π/4, π/4] carries only the one rounding of the product.
-//! On that interval, Taylor polynomials to x¹⁷ (f64) or x⁹ (f32) have a
-//! truncation error below half an ulp: (π/4)¹⁹/19! ≈ 6e-20 and
-//! (π/4)¹¹/11! ≈ 2e-9 relative to values ≥ 0.7 for cos, and to x for sin.
-//! The quadrant then permutes and negates (sin x, cos x).
-//!
-//! The same polynomials serve the concentric disk, whose angle is already
-//! within [−π/4, π/4] ([`sin_cos_quarter`](crate::f64::sin_cos_quarter) of each precision).
 
 /// The Taylor coefficients each precision uses (see the module docs).
 mod taylor {
@@ -73,8 +57,30 @@ macro_rules! trig_impl {
         /// Taylor series in x² (truncation error below half an ulp on that
         /// interval).
         ///
+        /// Every warp turns a uniform u into an azimuth φ = 2πu. The standard
+        /// library's `sin_cos` calls libm twice, does a general (Payne–Hanek or
+        /// Cody–Waite) reduction by π/2 that we do not need, and cannot be inlined
+        /// or vectorised; on this project's machine it is most of the cost of a
+        /// cosine-hemisphere sample. Because the argument is a fraction of a turn,
+        /// the reduction is exact here: q = round(4u) is the quadrant and
+        /// r = 4u − q ∈ [−½, ½] is computed without rounding error (Sterbenz), so
+        /// x = (π/2) r ∈ [−π/4, π/4] carries only the one rounding of the product.
+        /// On that interval, Taylor polynomials to x¹⁷ (f64) or x⁹ (f32) have a
+        /// truncation error below half an ulp: (π/4)¹⁹/19! ≈ 6e-20 and
+        /// (π/4)¹¹/11! ≈ 2e-9 relative to values ≥ 0.7 for cos, and to x for sin.
+        /// The quadrant then permutes and negates (sin x, cos x).
+        ///
+        /// The same polynomials serve the concentric disk, whose angle is already
+        /// within [−π/4, π/4] ([`sin_cos_quarter`](crate::f64::sin_cos_quarter) of each precision).
+        ///
         /// # Panics
         /// Debug builds check the interval (with a few ulps of slack).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::sin_cos_quarter;")]
+        /// let (s, c) = sin_cos_quarter(0.5);
+        #[doc = concat!("assert!((s - 0.5", stringify!($p), ".sin()).abs() < 1e-6 && (c - 0.5", stringify!($p), ".cos()).abs() < 1e-6);")]
+        /// ```
         #[inline(always)]
         pub fn sin_cos_quarter(x: Real) -> (Real, Real) {
             debug_assert!(x.abs() <= PI / 4.0 * (1.0 + 8.0 * Real::EPSILON) || x.is_nan());
@@ -108,6 +114,30 @@ macro_rules! trig_impl {
 
         /// (sin 2πu, cos 2πu) for u ∈ [0, 1] with exact range reduction
         /// (see the module docs). Accurate to about one ulp.
+        ///
+        /// Every warp turns a uniform u into an azimuth φ = 2πu. The standard
+        /// library's `sin_cos` calls libm twice, does a general (Payne–Hanek or
+        /// Cody–Waite) reduction by π/2 that we do not need, and cannot be inlined
+        /// or vectorised; on this project's machine it is most of the cost of a
+        /// cosine-hemisphere sample. Because the argument is a fraction of a turn,
+        /// the reduction is exact here: q = round(4u) is the quadrant and
+        /// r = 4u − q ∈ [−½, ½] is computed without rounding error (Sterbenz), so
+        /// x = (π/2) r ∈ [−π/4, π/4] carries only the one rounding of the product.
+        /// On that interval, Taylor polynomials to x¹⁷ (f64) or x⁹ (f32) have a
+        /// truncation error below half an ulp: (π/4)¹⁹/19! ≈ 6e-20 and
+        /// (π/4)¹¹/11! ≈ 2e-9 relative to values ≥ 0.7 for cos, and to x for sin.
+        /// The quadrant then permutes and negates (sin x, cos x).
+        ///
+        /// The same polynomials serve the concentric disk, whose angle is already
+        /// within [−π/4, π/4] ([`sin_cos_quarter`](crate::f64::sin_cos_quarter) of each precision).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::sin_cos_2pi;")]
+        /// assert_eq!(sin_cos_2pi(0.25), (1.0, 0.0));
+        /// let (s, c) = sin_cos_2pi(0.1);
+        #[doc = concat!("assert!((s - (0.2 * std::", stringify!($p), "::consts::PI).sin()).abs() < 1e-6);")]
+        #[doc = concat!("assert!((c - (0.2 * std::", stringify!($p), "::consts::PI).cos()).abs() < 1e-6);")]
+        /// ```
         #[inline(always)]
         pub fn sin_cos_2pi(u: Real) -> (Real, Real) {
             let four_u = 4.0 * u;

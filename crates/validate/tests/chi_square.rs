@@ -1,5 +1,5 @@
 //! The chi-square tool on known samplers, and the negative controls it must
-//! reject at the same sample counts (DESIGN.md, "Statistical tests").
+//! reject at the same sample counts (docs/ARCHITECTURE.md, "Statistical tests").
 //!
 //! Family: the six tests expected to pass (uniform sphere, cosine
 //! hemisphere, uniform cones at θmax = 1e-6, 1e-3, 1, 3 rad) at a family-wise

@@ -6,12 +6,12 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind};
-use lambert_estimator::strategy::Strategy;
+use lambert_estimator::estimation::{estimate, EstimateConfig, EstimateError, EstimateReport};
 use lambert_light::Scene;
 use serde_json::json;
 
 use super::analytic::closed_form;
+use super::finite;
 
 /// Options of `lambert estimate`.
 #[derive(Args, Debug, Clone)]
@@ -40,14 +40,8 @@ pub struct EstimateOptions {
 
 /// Runs the command.
 pub fn run(options: &EstimateOptions) -> Result<(), String> {
-    let strategy: Strategy = options
-        .strategy
-        .parse()
-        .map_err(|e| format!("--strategy: {e}"))?;
-    let sequence: SequenceKind = options
-        .sequence
-        .parse()
-        .map_err(|e| format!("--sequence: {e}"))?;
+    let (strategy, sequence) =
+        crate::parse::strategy_and_sequence(&options.strategy, &options.sequence)?;
     let scene =
         Scene::load(&options.scene).map_err(|e| format!("{}: {e}", options.scene.display()))?;
     let config = EstimateConfig {
@@ -57,11 +51,31 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
         seed: options.seed,
         threads: options.threads,
     };
-    let report = estimate(&scene, &config).map_err(|e| format!("--{e}"))?;
-    let analytic = closed_form(&scene).map(|c| c.total);
-    let rel_error = analytic.and_then(|a| (a != 0.0).then(|| (report.mean - a) / a));
-    let z = analytic
-        .and_then(|a| (report.std_error > 0.0).then(|| (report.mean - a) / report.std_error));
+    // An irradiance beyond the f64 range cannot be estimated either: refuse
+    // before sampling, naming the emitter.
+    let analytic = closed_form(&scene)
+        .map_err(|e| format!("{}: {e}", options.scene.display()))?
+        .ok()
+        .map(|c| c.total);
+    let report = checked_estimate(&scene, &config, &options.scene.display().to_string())?;
+    let rel_error = match analytic {
+        Some(a) if a != 0.0 => Some(finite::ratio(
+            "rel_error",
+            "relative error (mean − analytic)/analytic =",
+            report.mean - a,
+            a,
+        )?),
+        _ => None,
+    };
+    let z = match analytic {
+        Some(a) if report.std_error > 0.0 => Some(finite::ratio(
+            "z",
+            "z-score (mean − analytic)/std_error =",
+            report.mean - a,
+            report.std_error,
+        )?),
+        _ => None,
+    };
     if options.json {
         let value = json!({
             "mean": report.mean,
@@ -99,4 +113,82 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The estimate, with every reported number finite.
+///
+/// # Errors
+/// A configuration error names its option (`--samples: …`). When the
+/// statistics fail (a sample value or a running sum left the f64 range, or
+/// a sample was NaN) or the mean, standard error or interval is not
+/// finite, the message names the emitter(s) responsible, found by
+/// estimating each emitter alone with the same configuration, after the
+/// scene's `origin` (its file).
+pub fn checked_estimate(
+    scene: &Scene,
+    config: &EstimateConfig,
+    origin: &str,
+) -> Result<EstimateReport, String> {
+    let cause = match estimate(scene, config) {
+        Err(EstimateError::Config { field, problem }) => {
+            return Err(format!("--{field}: {problem}"))
+        }
+        Err(EstimateError::Statistics(e)) => format!("the estimator reported: {e}"),
+        Ok(r) => match non_finite_quantity(&r) {
+            None => return Ok(r),
+            Some(q) => q,
+        },
+    };
+    Err(format!("{origin}: {}", blame(scene, config, &cause)))
+}
+
+/// The first of the report's quantities that is not finite, as `key = value`.
+fn non_finite_quantity(r: &EstimateReport) -> Option<String> {
+    [
+        ("mean", r.mean),
+        ("std_error", r.std_error),
+        ("ci99", r.ci99.0),
+        ("ci99", r.ci99.1),
+    ]
+    .into_iter()
+    .find(|(_, v)| !v.is_finite())
+    .map(|(k, v)| format!("{k} = {v}"))
+}
+
+/// A message naming the emitters whose estimate alone is not finite (or,
+/// if each alone is finite, all the sampled emitters, whose sum is not).
+fn blame(scene: &Scene, config: &EstimateConfig, cause: &str) -> String {
+    let alone = |e: &lambert_light::Emitter| {
+        let single = Scene::new(scene.receiver, vec![e.clone()]).ok()?;
+        estimate(&single, config)
+            .ok()
+            .filter(|r| non_finite_quantity(r).is_none())
+    };
+    let culprits: Vec<String> = scene
+        .emitters
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| alone(e).is_none())
+        .map(|(i, e)| finite::describe(i, e))
+        .collect();
+    if culprits.is_empty() {
+        let all: Vec<String> = scene
+            .emitters
+            .iter()
+            .enumerate()
+            .map(|(i, e)| finite::describe(i, e))
+            .collect();
+        format!(
+            "{}: each emitter's estimate is finite but their sum is not ({cause}; --strategy {})",
+            all.join(", "),
+            config.strategy
+        )
+    } else {
+        format!(
+            "{}: the Monte Carlo estimate of its irradiance is not finite with --strategy {} --sequence {}: a sample value or a sum of them left the f64 range, or a sample was NaN ({cause})",
+            culprits.join(", "),
+            config.strategy,
+            config.sequence
+        )
+    }
 }

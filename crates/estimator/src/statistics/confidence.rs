@@ -1,7 +1,11 @@
 //! Two-sided confidence intervals for a mean, `m ± q·s/√n`.
 
-use super::estimate::STUDENT_T_BELOW;
 use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
+
+/// Below this many samples, confidence intervals use Student's t quantile
+/// with n − 1 degrees of freedom; from it on, the normal quantile
+/// ([`ConfidenceInterval`] explains why).
+pub const STUDENT_T_BELOW: u64 = 30;
 
 /// The distribution whose quantile sets the half-width of an interval.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -90,11 +90,6 @@ pub struct Estimate {
     m2: NeumaierSum,
 }
 
-/// Below this many samples, confidence intervals use Student's t quantile
-/// with n − 1 degrees of freedom; from it on, the normal quantile
-/// ([`ConfidenceInterval`] explains why).
-pub const STUDENT_T_BELOW: u64 = 30;
-
 /// The compensated sum `s + c` divided by `n`, as `hi + lo` (module docs).
 #[inline]
 fn split_mean(sum: &NeumaierSum, n: u64) -> (f64, f64) {
@@ -345,7 +340,7 @@ impl Estimate {
 
     /// A two-sided confidence interval for the true mean at `level`
     /// (e.g. 0.99): `m ± q·s/√n`, q Student's t quantile with n − 1 degrees
-    /// of freedom for n < [`STUDENT_T_BELOW`], the normal quantile from it on
+    /// of freedom for n < [`STUDENT_T_BELOW`](super::STUDENT_T_BELOW), the normal quantile from it on
     /// (see [`ConfidenceInterval`]).
     ///
     /// # Errors

@@ -31,9 +31,9 @@ pub mod neumaier;
 pub mod parallel;
 pub mod timing;
 
-pub use confidence::{ConfidenceInterval, QuantileSource};
+pub use confidence::{ConfidenceInterval, QuantileSource, STUDENT_T_BELOW};
 pub use error::StatisticsError;
-pub use estimate::{Estimate, STUDENT_T_BELOW};
+pub use estimate::Estimate;
 pub use neumaier::NeumaierSum;
 pub use parallel::{run_chunked, run_chunked_timed, run_samples, TimedEstimate, BATCH_CHUNKS};
 pub use timing::Timing;

@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 /// How long a run of `samples` samples on `threads` threads took.
 ///
-/// Costs are reported as in DESIGN.md ("Performance"): ns/sample, and the
+/// Costs are reported as ns/sample, and the
 /// efficiency ε = 1/(V·T) (V the variance of one sample's estimate, T its
 /// time; Hammersley & Handscomb 1964, §5.1, "Monte Carlo Methods"), which is
 /// independent of n and the figure to compare two strategies by.

@@ -21,10 +21,12 @@
 
 mod emitter_area;
 mod emitter_light;
+mod occluded;
 mod prepared;
 
 pub use emitter_area::EmitterArea;
 pub use emitter_light::{EmitterLight, LightDirection};
+pub use occluded::{delta_irradiance_visible, OccludedEmitter};
 pub use prepared::PreparedEmitter;
 
 use std::fmt;
@@ -45,10 +47,24 @@ impl Heuristic {
     /// The weight of a sample drawn from technique a, whose density is
     /// `pa`, against technique b with density `pb` at the same direction.
     #[inline]
+    ///
+    /// Where the textbook form leaves the f64 range (a light under 1e-154
+    /// sr makes p_a² overflow, a huge one makes both squares underflow to
+    /// 0/0) the same weight is taken as 1/(1 + (p_b/p_a)^k), which stays in
+    /// range; elsewhere the textbook form is kept, so ordinary results do
+    /// not change by an ulp. 0 when p_a = 0.
     pub fn weight(self, pa: f64, pb: f64) -> f64 {
-        match self {
+        let w = match self {
             Heuristic::Balance => pa / (pa + pb),
             Heuristic::Power => pa * pa / (pa * pa + pb * pb),
+        };
+        if w.is_finite() || !(pa > 0.0) {
+            return if pa > 0.0 { w } else { 0.0 };
+        }
+        let r = pb / pa;
+        match self {
+            Heuristic::Balance => 1.0 / (1.0 + r),
+            Heuristic::Power => 1.0 / (1.0 + r * r),
         }
     }
 }
@@ -166,5 +182,28 @@ impl FromStr for Strategy {
                 ))
             }
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Heuristic;
+
+    #[test]
+    fn weights_stay_in_range_for_extreme_densities() {
+        for h in [Heuristic::Balance, Heuristic::Power] {
+            // Ordinary densities: the textbook form, exactly.
+            assert_eq!(h.weight(1.0, 1.0), 0.5);
+            // A light of 1e-160 sr (density 1e160) against cosine sampling.
+            let w = h.weight(1e160, 0.3);
+            assert!(w.is_finite() && w > 0.999_999, "{h:?}: {w}");
+            assert!(h.weight(0.3, 1e160) < 1e-100);
+            // A huge light: both densities tiny, the squares underflow.
+            let w = h.weight(1e-170, 2e-170);
+            assert!(w.is_finite() && w > 0.0 && w < 0.5, "{h:?}: {w}");
+            // No density, no weight.
+            assert_eq!(h.weight(0.0, 0.0), 0.0);
+            assert_eq!(h.weight(0.0, 1.0), 0.0);
+        }
     }
 }

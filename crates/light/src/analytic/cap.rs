@@ -9,7 +9,7 @@
 //! P is the area of the region's orthographic projection onto the plane
 //! ⊥ n (Nusselt's analogue). For γ ≤ π/2:
 //! - cos β ≥ sin γ (wholly above): the cap's rim projects to an ellipse of
-//!   semi-axes sin γ cos β and sin γ, so P = π sin²γ cos β (the lecture's
+//!   semi-axes sin γ cos β and sin γ, so P = π sin²γ cos β (the
 //!   disk light π sin²α when β = 0).
 //! - cos β ≤ −sin γ (wholly below): P = 0.
 //! - otherwise the rim crosses the horizon at azimuths ±φ₀ and the projected
@@ -156,7 +156,7 @@ impl CapAngles {
 /// ```
 /// use lambert_light::analytic::cap_projected_solid_angle;
 /// use std::f64::consts::PI;
-/// // The lecture's disk light: a cap straight overhead, P = π sin²α.
+/// // A disk light straight overhead is a cap, P = π sin²α.
 /// let a: f64 = 0.4;
 /// assert!((cap_projected_solid_angle(1.0, a.sin(), a.cos()) - PI * a.sin().powi(2)).abs() < 1e-15);
 /// // Half a sky over a vertical receiver: a dome (γ = π/2) tilted by 90°.

@@ -64,7 +64,7 @@ use std::f64::consts::PI;
 
 /// A uniform disk of radiance L and radius R seen from a receiver on its
 /// axis at height h, facing it: E = Lπ sin²α with sin²α = R²/(R² + h²)
-/// (the lecture's Ω⊥ = π sin²α; closed form, no cancellation), formed as
+/// (Ω⊥ = π sin²α; closed form, no cancellation), formed as
 /// L·π·sin α·sin α with sin α = R/√(R² + h²) in lengths scaled by a power
 /// of two, so that nothing overflows or underflows on the way.
 ///

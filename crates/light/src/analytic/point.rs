@@ -17,7 +17,7 @@ use glam::DVec3;
 /// ```
 /// use glam::DVec3;
 /// use lambert_light::analytic::point_light_irradiance;
-/// // The lecture's 815 lm bulb (64.86 cd), 2 m away at 60° from the normal.
+/// // An 815 lm bulb (64.86 cd), 2 m away at 60° from the normal.
 /// let i = 815.0 / (4.0 * std::f64::consts::PI);
 /// let l = DVec3::new(3f64.sqrt(), 0.0, 1.0);
 /// let e = point_light_irradiance(i, DVec3::ZERO, DVec3::Z, l).unwrap();
@@ -65,7 +65,7 @@ pub fn point_light_irradiance(
 
 /// A directional light (the Sun as a delta: all rays parallel) whose
 /// irradiance on a surface facing it is E⊥ (W/m²), arriving from the unit
-/// direction `to_light`: E = E⊥ max(n·d, 0), W/m² (the lecture's clamped
+/// direction `to_light`: E = E⊥ max(n·d, 0), W/m² (the clamped
 /// "N-dot-L"; pbrt-v4 `DistantLight`). Errors: non-finite input or non-unit
 /// vectors.
 pub fn directional_light_irradiance(

@@ -5,7 +5,7 @@ use lambert_geometry::validate;
 use super::EmitterError;
 
 /// Radiance `radiance` (W/m²/sr) from every direction; a receiver sees
-/// E = Lπ whatever its normal (the lecture's uniform hemisphere).
+/// E = Lπ whatever its normal (the uniform hemisphere).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sky {
     /// L, in W/m²/sr.

@@ -78,6 +78,31 @@ struct RawEmitter {
     irradiance: Option<f64>,
 }
 
+/// One `[[emitters]]` entry of a scene file as written, checked against its
+/// kind only when built: for file formats that embed this one's emitters
+/// (the tracer's scene files), so that both read emitters by one set of
+/// rules and report errors alike.
+///
+/// ```
+/// use lambert_light::scene::EmitterEntry;
+/// let entry: EmitterEntry = toml::from_str("kind = \"point\"\nposition = [0.0, 0.0, 1.0]\nflux = 4.0").unwrap();
+/// assert_eq!(entry.build()?.kind(), "point");
+/// let bad: EmitterEntry = toml::from_str("kind = \"sky\"\nradius = 1.0").unwrap();
+/// assert_eq!(bad.build().unwrap_err().field, "radius");
+/// # Ok::<(), lambert_light::EmitterError>(())
+/// ```
+#[derive(Deserialize)]
+#[serde(transparent)]
+pub struct EmitterEntry(RawEmitter);
+
+impl EmitterEntry {
+    /// The emitter, validated. Errors name the field without its place
+    /// (`radius`); add the place with [`EmitterError::within`].
+    pub fn build(&self) -> Result<Emitter, EmitterError> {
+        build(&self.0)
+    }
+}
+
 /// The fields each kind accepts (besides `kind`).
 fn allowed(kind: &str) -> Option<&'static [&'static str]> {
     Some(match kind {
@@ -236,7 +261,8 @@ fn build(raw: &RawEmitter) -> Result<Emitter, EmitterError> {
 pub(super) fn parse(text: &str) -> Result<Scene, SceneError> {
     let raw: RawScene =
         toml::from_str(text).map_err(|e| SceneError::new(format!("scene file: {e}")))?;
-    let receiver = Receiver::new(v3(raw.receiver.point), v3(raw.receiver.normal))?;
+    let receiver = Receiver::new(v3(raw.receiver.point), v3(raw.receiver.normal))
+        .map_err(EmitterError::from)?;
     let mut emitters = Vec::with_capacity(raw.emitters.len());
     for (i, e) in raw.emitters.iter().enumerate() {
         emitters.push(build(e).map_err(|err| err.within(&format!("emitters[{i}]")))?);

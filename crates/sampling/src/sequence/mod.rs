@@ -17,6 +17,13 @@
 //! takes one, [`next_2d`](SampleSequence::next_2d) and
 //! [`next_2d_f32`](SampleSequence::next_2d_f32) take two (the pair `(d, d+1)`).
 //!
+//! **Batches**: [`fill_2d`](SampleSequence::fill_2d) fills one dimension
+//! pair for a run of consecutive samples (a chunk of an estimate) with the
+//! values the cursor would give, to the bit. [`Sobol`] and [`Stratified`]
+//! implement it with kernels that do per batch what is per batch (keys,
+//! tables) and compute the points in blocks of arrays, at a fraction of the
+//! cost of reading them one by one (`benches/benches/sequences.rs`).
+//!
 //! ```
 //! use lambert_sampling::sequence::{SampleSequence, Sobol};
 //! use lambert_sampling::f64::UniformCone;
@@ -34,8 +41,12 @@
 
 pub mod independent;
 pub mod sobol;
+mod sobol_batch;
 mod sobol_table;
 pub mod stratified;
+mod stratified_batch;
+#[cfg(test)]
+mod value_stability;
 
 pub use independent::Independent;
 pub use sobol::{Scramble, Sobol, SobolLayout};
@@ -75,6 +86,54 @@ pub trait SampleSequence: Clone + Send + Sync {
     /// The default truncates [`next_1d`](SampleSequence::next_1d) to 24 bits.
     fn next_1d_f32(&mut self) -> f32 {
         f64_to_f32_unit(self.next_1d())
+    }
+
+    /// Fills `out[k]` with 2-D request number `request` of sample
+    /// `first + k` (indices wrap modulo `2^64`): the value
+    /// [`next_2d`](SampleSequence::next_2d) returns after
+    /// [`start_sample(first + k)`](SampleSequence::start_sample) and
+    /// `request` earlier `next_2d` calls — dimensions
+    /// `(2·request, 2·request + 1)` — to the bit. The cursor does not move.
+    ///
+    /// The default reads the samples one by one; [`Sobol`] and
+    /// [`Stratified`] override it with batch kernels that hoist the per-batch
+    /// work (hash keys, tables) out of the loop and compute the points in
+    /// structure-of-arrays blocks.
+    ///
+    /// ```
+    /// use glam::DVec2;
+    /// use lambert_sampling::sequence::{SampleSequence, Sobol};
+    /// let seq = Sobol::new(3);
+    /// let mut batch = [DVec2::ZERO; 100];
+    /// seq.fill_2d(1000, 1, &mut batch);
+    /// let mut one = seq.clone();
+    /// one.start_sample(1042);
+    /// one.next_2d();
+    /// assert_eq!(batch[42], one.next_2d());
+    /// ```
+    fn fill_2d(&self, first: u64, request: u64, out: &mut [DVec2]) {
+        let mut s = self.clone();
+        for (k, o) in out.iter_mut().enumerate() {
+            s.start_sample(first.wrapping_add(k as u64));
+            for _ in 0..request {
+                s.next_2d();
+            }
+            *o = s.next_2d();
+        }
+    }
+
+    /// [`fill_2d`](SampleSequence::fill_2d) in f32: `out[k]` is the value
+    /// [`next_2d_f32`](SampleSequence::next_2d_f32) returns for request
+    /// `request` of sample `first + k`, to the bit.
+    fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {
+        let mut s = self.clone();
+        for (k, o) in out.iter_mut().enumerate() {
+            s.start_sample(first.wrapping_add(k as u64));
+            for _ in 0..request {
+                s.next_2d();
+            }
+            *o = s.next_2d_f32();
+        }
     }
 }
 

@@ -56,11 +56,17 @@
 //! (53 bits in all); f32 is the top 24 bits, `⌊x / 2^8⌋ · 2^-24`. Both are
 //! below 1 for every `x`.
 //!
+//! **Batches**: [`SampleSequence::fill_2d`] computes a dimension pair for
+//! many consecutive indices at once, in the bit-reversed domain where the
+//! scramble acts directly, with byte-wise tables of the generator matrices
+//! (`sobol_batch.rs`); the values are the cursor's, to the bit.
+//!
 //! Why not the `sobol_burley` crate: it returns only f32, and with index
 //! shuffling gives at most `2^16` samples per seed (it keeps 16 direction
 //! numbers per dimension). This implementation keeps 32 direction numbers,
 //! gives f64 and f32, and `2^32` points per seed.
 
+use super::sobol_batch::{self, burley_hash, CoordinateScramble, PairPlan};
 use super::sobol_table::{SOBOL_DIMENSIONS, SOBOL_MATRICES};
 use super::{hash2, hash3, u32_to_f32, u32_to_f64, SampleSequence, TWO_POW_M53};
 use glam::{DVec2, Vec2};
@@ -263,10 +269,64 @@ impl Sobol {
     #[inline]
     fn to_f64(&self, x: u32, dim: u64) -> f64 {
         if self.low_bits {
-            let r = hash3(self.block_seed ^ TAG_LOW_BITS, dim, u64::from(self.index));
-            ((u64::from(x) << 21) | (r >> 43)) as f64 * TWO_POW_M53
+            with_low_bits(x, self.block_seed, dim, self.index)
         } else {
             u32_to_f64(x)
+        }
+    }
+
+    /// What a batch of 2-D request `request` computes in the block of
+    /// `2^32` indices with seed `block_seed`: the same shuffle slot, table
+    /// dimensions and scramble slots as
+    /// [`current_u32`](Self::current_u32) for dimensions `2·request` and
+    /// `2·request + 1`.
+    fn pair_plan(&self, block_seed: u64, request: u64) -> PairPlan {
+        let d = 2 * request;
+        let (shuffle_slot, shuffle, first_table_dim) = match self.layout {
+            SobolLayout::Global => {
+                // d is even, so d and d + 1 share the padding block.
+                let pad = d / SOBOL_DIMENSIONS as u64;
+                let table_dim = (d % SOBOL_DIMENSIONS as u64) as usize;
+                (pad, self.shuffle || pad > 0, table_dim)
+            }
+            SobolLayout::Padded => (d, true, 0),
+        };
+        let scramble = |dim: u64| {
+            let key = hash3(block_seed, dim, TAG_SCRAMBLE);
+            match self.scramble {
+                Scramble::None => CoordinateScramble::None,
+                Scramble::FastOwen => CoordinateScramble::FastOwen(key as u32),
+                Scramble::Owen => CoordinateScramble::Owen(key),
+            }
+        };
+        PairPlan {
+            shuffle: shuffle.then(|| hash3(block_seed, shuffle_slot, TAG_SHUFFLE) as u32),
+            dims: [first_table_dim, first_table_dim + 1],
+            scramble: [scramble(d), scramble(d + 1)],
+        }
+    }
+
+    /// The 32-bit values of 2-D request `request` of samples `first …
+    /// first + len − 1`, computed by the batch kernel and handed to
+    /// `sink(offset, block_seed, first_local, xs, ys)` block by block
+    /// (`offset` counts from `first`; `first_local` is the index, within its
+    /// block of `2^32`, of `xs[0]`).
+    fn fill_pair_u32<F>(&self, first: u64, request: u64, len: usize, mut sink: F)
+    where
+        F: FnMut(usize, u64, u32, &[u32], &[u32]),
+    {
+        let mut done = 0usize;
+        while done < len {
+            let index = first.wrapping_add(done as u64);
+            let block_seed = hash2(self.seed, index >> 32);
+            let local = index as u32;
+            // Up to the end of this block of 2^32 indices.
+            let room = ((1u64 << 32) - u64::from(local)).min((len - done) as u64) as usize;
+            let plan = self.pair_plan(block_seed, request);
+            sobol_batch::fill_pair(&plan, local, room, |offset, xs, ys| {
+                sink(done + offset, block_seed, local + offset as u32, xs, ys);
+            });
+            done += room;
         }
     }
 
@@ -323,6 +383,50 @@ impl SampleSequence for Sobol {
         self.dim += 1;
         u32_to_f32(x)
     }
+
+    /// The batch kernel of `sobol_batch.rs`: the same values as the cursor,
+    /// to the bit.
+    fn fill_2d(&self, first: u64, request: u64, out: &mut [DVec2]) {
+        let d = 2 * request;
+        self.fill_pair_u32(
+            first,
+            request,
+            out.len(),
+            |offset, block_seed, local, xs, ys| {
+                let out = &mut out[offset..offset + xs.len()];
+                if self.low_bits {
+                    for (k, (o, (&x, &y))) in out.iter_mut().zip(xs.iter().zip(ys)).enumerate() {
+                        let index = local + k as u32;
+                        *o = DVec2::new(
+                            with_low_bits(x, block_seed, d, index),
+                            with_low_bits(y, block_seed, d + 1, index),
+                        );
+                    }
+                } else {
+                    for (o, (&x, &y)) in out.iter_mut().zip(xs.iter().zip(ys)) {
+                        *o = DVec2::new(u32_to_f64(x), u32_to_f64(y));
+                    }
+                }
+            },
+        );
+    }
+
+    fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {
+        self.fill_pair_u32(first, request, out.len(), |offset, _, _, xs, ys| {
+            let out = &mut out[offset..offset + xs.len()];
+            for (o, (&x, &y)) in out.iter_mut().zip(xs.iter().zip(ys)) {
+                *o = Vec2::new(u32_to_f32(x), u32_to_f32(y));
+            }
+        });
+    }
+}
+
+/// `x · 2^-32` plus 21 hashed bits below it (53 bits in all), the hash
+/// drawn from `(block seed, dimension, index within the block)`.
+#[inline]
+fn with_low_bits(x: u32, block_seed: u64, dim: u64, index: u32) -> f64 {
+    let r = hash3(block_seed ^ TAG_LOW_BITS, dim, u64::from(index));
+    ((u64::from(x) << 21) | (r >> 43)) as f64 * TWO_POW_M53
 }
 
 /// Coordinate `dim` of the unscrambled Sobol point of index `index`, as a
@@ -353,13 +457,7 @@ pub fn sobol_u32(index: u32, dim: usize) -> u32 {
 /// to shuffle indices.
 #[inline]
 pub fn laine_karras_permutation(x: u32, seed: u32) -> u32 {
-    let mut v = x.reverse_bits();
-    v ^= v.wrapping_mul(0x3d20_adea);
-    v = v.wrapping_add(seed);
-    v = v.wrapping_mul((seed >> 16) | 1);
-    v ^= v.wrapping_mul(0x0552_6c56);
-    v ^= v.wrapping_mul(0x53a2_2864);
-    v.reverse_bits()
+    burley_hash(x.reverse_bits(), seed).reverse_bits()
 }
 
 /// Full nested uniform scramble (Owen 1995) of a 32-bit binary fraction:

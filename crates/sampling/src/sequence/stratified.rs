@@ -41,10 +41,21 @@
 //! and jitter are hashed from `(seed, pass)`), so any prefix of whole passes
 //! is a union of stratified sets.
 //!
+//! **Batches**: [`SampleSequence::fill_2d`] computes a dimension pair for
+//! many consecutive samples at once (`stratified_batch.rs`): keys hashed
+//! once per batch, the column and row keys tabulated once per pass and
+//! dimension pair, exact division by a precomputed reciprocal; the values
+//! are the cursor's, to the bit.
+//!
 //! f32 output is the f64 value truncated to 24 bits, so a point lying within
 //! `2^-24` above a stratum boundary `k/N` may fall just below it in f32.
 
-use super::{clamp_unit, f64_to_f32_unit, hash2, hash3, mix64, u64_to_f64, SampleSequence};
+use std::sync::Arc;
+
+use super::stratified_batch::{
+    fill_pass, stratum_to_unit, Domain, KeyCache, PassPlan, PermuteKeys, BLOCK,
+};
+use super::{f64_to_f32_unit, hash2, hash3, mix64, SampleSequence};
 use crate::SamplingError;
 use glam::{DVec2, Vec2};
 
@@ -79,6 +90,8 @@ pub struct Stratified {
     /// Position within the pass, `index mod N`.
     local: u32,
     dim: u64,
+    /// Tabulated column and row keys for the batch fills, shared by clones.
+    cache: Arc<KeyCache>,
 }
 
 impl Stratified {
@@ -104,6 +117,7 @@ impl Stratified {
             pass_seed: 0,
             local: 0,
             dim: 0,
+            cache: Arc::default(),
         };
         s.start_sample(0);
         Ok(s)
@@ -148,13 +162,6 @@ fn near_square_grid(n: u32) -> (u32, u32) {
     (nx as u32, (n64 / nx) as u32)
 }
 
-/// `(k + ξ) / n` for stratum `k < n` and jitter bits `bits` (ξ = top 53 bits
-/// · 2^-53), clamped below 1 (the sum `k + ξ` may round up to `k + 1`).
-#[inline]
-fn stratum_to_unit(k: u32, bits: u64, n: u32) -> f64 {
-    clamp_unit((f64::from(k) + u64_to_f64(bits)) / f64::from(n))
-}
-
 /// Element `i` of a pseudo-random permutation of `0..n` determined by `key`
 /// (`i < n`, `n ≥ 1`).
 ///
@@ -163,32 +170,10 @@ fn stratum_to_unit(k: u32, bits: u64, n: u32) -> f64 {
 /// xorshift right, all mod `2^w` — applied repeatedly until the value falls
 /// below `n` (cycle walking, Black & Rogaway 2002), which restricts the
 /// bijection to `0..n`; fewer than 2 rounds on average since `2^w < 2n`.
+/// The steps are [`Domain`]'s, shared with the batch kernel.
 #[inline]
 pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
-    debug_assert!(i < n);
-    if n <= 1 {
-        return 0;
-    }
-    let w = 32 - (n - 1).leading_zeros(); // bits of n − 1, 1 ≤ w ≤ 32
-    let mask = if w == 32 { u32::MAX } else { (1u32 << w) - 1 };
-    let k = [mix64(key), mix64(key ^ 0x9e37_79b9_7f4a_7c15)];
-    let half = w.div_ceil(2);
-    let mut x = i;
-    loop {
-        for kr in k {
-            x ^= kr as u32 & mask;
-            x = x.wrapping_mul((kr >> 32) as u32 | 1) & mask;
-            x ^= x >> half;
-            x = x.wrapping_add((kr >> 40) as u32) & mask;
-            x = x.wrapping_mul(0x2c1b_3c6d) & mask;
-            x = x.wrapping_mul((kr >> 16) as u32 | 1) & mask;
-            x ^= x >> half;
-            x ^= x >> 1;
-        }
-        if x < n {
-            return x;
-        }
-    }
+    Domain::new(n).permute(i, &PermuteKeys::new(key))
 }
 
 impl SampleSequence for Stratified {
@@ -227,6 +212,56 @@ impl SampleSequence for Stratified {
     fn next_2d_f32(&mut self) -> Vec2 {
         let u = self.next_2d();
         Vec2::new(f64_to_f32_unit(u.x), f64_to_f32_unit(u.y))
+    }
+
+    /// The batch kernel of `stratified_batch.rs`: the same values as the
+    /// cursor, to the bit.
+    fn fill_2d(&self, first: u64, request: u64, out: &mut [DVec2]) {
+        let n = u64::from(self.n);
+        let dim = 2 * request;
+        let mut done = 0usize;
+        while done < out.len() {
+            let index = first.wrapping_add(done as u64);
+            let (pass, local) = (index / n, (index % n) as u32);
+            // Up to the end of the pass, of the batch, or of the index range
+            // (after 2^64 − 1 comes 0, the start of pass 0).
+            let room = (n - u64::from(local) - 1)
+                .min((out.len() - done - 1) as u64)
+                .min(u64::MAX - index)
+                + 1;
+            let room = room as usize;
+            let pass_seed = hash2(self.seed, pass);
+            let h = hash2(pass_seed, dim);
+            let plan = PassPlan {
+                n: self.n,
+                nx: self.nx,
+                ny: self.ny,
+                cell: PermuteKeys::new(hash2(h, TAG_CELL)),
+                sigma_key: hash2(h, TAG_SIGMA),
+                tau_key: hash2(h, TAG_TAU),
+                jitter_seed: h,
+            };
+            fill_pass(
+                &plan,
+                &self.cache,
+                pass_seed,
+                dim,
+                local,
+                &mut out[done..done + room],
+            );
+            done += room;
+        }
+    }
+
+    fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {
+        let mut wide = [DVec2::ZERO; BLOCK];
+        for (b, out) in out.chunks_mut(BLOCK).enumerate() {
+            let wide = &mut wide[..out.len()];
+            self.fill_2d(first.wrapping_add((b * BLOCK) as u64), request, wide);
+            for (o, u) in out.iter_mut().zip(wide.iter()) {
+                *o = Vec2::new(f64_to_f32_unit(u.x), f64_to_f32_unit(u.y));
+            }
+        }
     }
 }
 

@@ -1,0 +1,232 @@
+//! Value stability: fixed seeds and indices give fixed bits.
+//!
+//! Every committed study result and every statistical test depends on the
+//! exact values of the sequences. These tests pin them — a few values
+//! spelled out, and a digest of many — so that an optimisation (a batch
+//! kernel, a table, a different instruction set) cannot change a result
+//! unnoticed. A deliberate change of values must update the constants here
+//! and say why in its commit.
+
+use super::{SampleSequence, Scramble, Sobol, SobolLayout, Stratified};
+
+/// FNV-1a over 64-bit words (Fowler, Noll & Vo): a fixed, dependency-free
+/// digest; any changed bit of any word changes it.
+fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325_u64;
+    for w in words {
+        for byte in w.to_le_bytes() {
+            h ^= u64::from(byte);
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    h
+}
+
+/// Indices that cover the first points, chunk boundaries (4096), a large
+/// replicate (3 125 000 = 5·10⁷ / 16), the end of the first block of `2^32`
+/// Sobol indices and the start of the next, and the largest index.
+fn indices() -> Vec<u64> {
+    let mut v: Vec<u64> = (0..300).collect();
+    v.extend([
+        4095,
+        4096,
+        4097,
+        65_535,
+        (1 << 20) | 12_345,
+        3_124_999,
+        (1 << 32) - 1,
+        1 << 32,
+        (1 << 32) + 5,
+        (1 << 40) | 777,
+        u64::MAX - 1,
+        u64::MAX,
+    ]);
+    v
+}
+
+/// The bits of everything a sample reads: two 2-D points, a 1-D value, a
+/// 2-D f32 point and a 1-D f32 value (dimensions 0 … 7); for every 16th
+/// index also dimensions 8 … 259 in 2-D steps (past the 256 Sobol table
+/// dimensions), keeping the last two points.
+fn read_bits<S: SampleSequence>(mut seq: S) -> Vec<u64> {
+    let mut out = Vec::new();
+    for (n, i) in indices().into_iter().enumerate() {
+        seq.start_sample(i);
+        for u in [seq.next_2d(), seq.next_2d()] {
+            out.extend([u.x.to_bits(), u.y.to_bits()]);
+        }
+        out.push(seq.next_1d().to_bits());
+        let v = seq.next_2d_f32();
+        out.extend([u64::from(v.x.to_bits()), u64::from(v.y.to_bits())]);
+        out.push(u64::from(seq.next_1d_f32().to_bits()));
+        if n % 16 == 0 {
+            let mut last = [0u64; 4];
+            for _ in 0..126 {
+                let u = seq.next_2d();
+                last = [last[2], last[3], u.x.to_bits(), u.y.to_bits()];
+            }
+            out.extend(last);
+        }
+    }
+    out
+}
+
+/// `(name, sequence)` of every Sobol configuration.
+fn sobol_configs() -> Vec<(&'static str, Sobol)> {
+    vec![
+        ("default seed 1", Sobol::new(1)),
+        ("default seed 2^64-1", Sobol::new(u64::MAX)),
+        ("unscrambled", Sobol::unscrambled()),
+        ("no shuffle", Sobol::new(5).with_index_shuffle(false)),
+        ("owen", Sobol::new(6).with_scramble(Scramble::Owen)),
+        ("no scramble", Sobol::new(7).with_scramble(Scramble::None)),
+        ("low bits", Sobol::new(8).with_random_low_bits(true)),
+        ("padded", Sobol::new(9).with_layout(SobolLayout::Padded)),
+    ]
+}
+
+/// `(n, seed)` of every stratified configuration: a square grid, a grid
+/// with passes, a prime (strips), the size of one replicate of a 5·10⁷
+/// estimate (1250 × 2500), the largest count.
+const STRATIFIED_CONFIGS: [(u32, u64); 5] = [
+    (16, 1),
+    (1000, 7),
+    (13, 3),
+    (3_125_000, 0x1234),
+    (u32::MAX, 9),
+];
+
+#[test]
+fn sobol_values_are_pinned() {
+    // A few values spelled out: Sobol::new(1), sample i, dimensions (0, 1),
+    // as f64 bits.
+    let pinned: [(u64, u64, u64); 3] = [
+        (0, 0x3fea_aadf_5de0_0000, 0x3feb_8709_3c60_0000),
+        (1, 0x3fc4_c379_cb80_0000, 0x3fc9_a33a_0f00_0000),
+        (12_345, 0x3fe1_0622_1d80_0000, 0x3fc6_1d45_6300_0000),
+    ];
+    let mut s = Sobol::new(1);
+    for (i, x, y) in pinned {
+        s.start_sample(i);
+        let u = s.next_2d();
+        assert_eq!((u.x.to_bits(), u.y.to_bits()), (x, y), "sample {i}");
+    }
+    let digests: [u64; 8] = [
+        0x51d5_60ec_61ee_6d31,
+        0xb975_d5e1_2c3b_95a8,
+        0x0f61_cfac_0d37_fa30,
+        0x494e_927b_87d9_65bc,
+        0x1068_de4f_0eac_95cf,
+        0x5fc4_5e50_dc87_4193,
+        0x8a8f_06e1_dcf3_7d34,
+        0xf6ff_81ac_cb8b_a4fc,
+    ];
+    for ((name, seq), want) in sobol_configs().into_iter().zip(digests) {
+        assert_eq!(digest(read_bits(seq)), want, "sobol {name}");
+    }
+}
+
+#[test]
+fn stratified_values_are_pinned() {
+    // N = 3 125 000, seed 0x1234, sample i, dimensions (0, 1), as f64 bits.
+    let pinned: [(u64, u64, u64); 3] = [
+        (0, 0x3fd6_0ddb_65b0_8a7c, 0x3fd7_d8d8_60bf_003f),
+        (1, 0x3fe7_3eca_eaf5_bbf3, 0x3fef_14ea_5205_180a),
+        (2_000_000, 0x3fe4_1e65_fd4a_165b, 0x3fcc_a7ff_3712_cf7a),
+    ];
+    let mut s = Stratified::new(3_125_000, 0x1234).unwrap();
+    for (i, x, y) in pinned {
+        s.start_sample(i);
+        let u = s.next_2d();
+        assert_eq!((u.x.to_bits(), u.y.to_bits()), (x, y), "sample {i}");
+    }
+    let digests: [u64; 5] = [
+        0x6d25_ff50_8a68_3c4d,
+        0x4a3f_72b2_3c39_bcfd,
+        0x7dae_7fa4_a614_0757,
+        0xa472_4491_0715_28c4,
+        0x29ff_6374_b989_ef29,
+    ];
+    for ((n, seed), want) in STRATIFIED_CONFIGS.into_iter().zip(digests) {
+        let seq = Stratified::new(n, seed).unwrap();
+        assert_eq!(digest(read_bits(seq)), want, "stratified N {n} seed {seed}");
+    }
+}
+
+/// Negative control: the digest sees a change of one bit in one value.
+#[test]
+fn digest_sees_one_changed_bit() {
+    let mut bits = read_bits(Sobol::new(1));
+    let before = digest(bits.iter().copied());
+    bits[777] ^= 1;
+    assert_ne!(digest(bits.iter().copied()), before);
+    let mut moved = read_bits(Sobol::new(1));
+    moved.swap(3, 4);
+    assert_ne!(digest(moved), before);
+}
+
+/// Batch fills give the cursor's values to the bit: every batch length
+/// regime (a single point, below and above the table threshold, several
+/// blocks with a partial one), requests in and past the first 256 Sobol
+/// dimensions, a batch crossing a block of `2^32` Sobol indices, and one
+/// wrapping past `2^64 − 1`.
+fn check_batch_matches_cursor<S: SampleSequence>(seq: &S, name: &str) {
+    let ranges: [(u64, usize); 7] = [
+        (0, 1),
+        (5, 63),
+        (5, 64),
+        (3_120_000, 4096 + 37),
+        ((1 << 32) - 300, 700),
+        (u64::MAX - 10, 30),
+        (12_345, 1000),
+    ];
+    let mut cursor = seq.clone();
+    for (first, len) in ranges {
+        for request in [0u64, 1, 2, 127, 128, 130] {
+            let mut batch = vec![glam::DVec2::ZERO; len];
+            let mut batch_f32 = vec![glam::Vec2::ZERO; len];
+            seq.fill_2d(first, request, &mut batch);
+            seq.fill_2d_f32(first, request, &mut batch_f32);
+            for k in 0..len {
+                let i = first.wrapping_add(k as u64);
+                cursor.start_sample(i);
+                for _ in 0..request {
+                    cursor.next_2d();
+                }
+                let mut again = cursor.clone();
+                let u = cursor.next_2d();
+                let v = again.next_2d_f32();
+                assert_eq!(
+                    (u.x.to_bits(), u.y.to_bits()),
+                    (batch[k].x.to_bits(), batch[k].y.to_bits()),
+                    "{name}: index {i} request {request}"
+                );
+                assert_eq!(
+                    (v.x.to_bits(), v.y.to_bits()),
+                    (batch_f32[k].x.to_bits(), batch_f32[k].y.to_bits()),
+                    "{name} f32: index {i} request {request}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn sobol_batches_match_the_cursor() {
+    for (name, seq) in sobol_configs() {
+        check_batch_matches_cursor(&seq, name);
+    }
+}
+
+#[test]
+fn stratified_batches_match_the_cursor() {
+    for (n, seed) in STRATIFIED_CONFIGS {
+        let seq = Stratified::new(n, seed).unwrap();
+        check_batch_matches_cursor(&seq, &format!("stratified N {n}"));
+    }
+}
+
+#[test]
+fn independent_batches_match_the_cursor() {
+    check_batch_matches_cursor(&super::Independent::new(4), "independent");
+}
