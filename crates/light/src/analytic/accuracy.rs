@@ -846,6 +846,59 @@ fn lights_seen_nearly_edge_on() {
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
 
+/// The wrong-but-finite answers the fuzzer kept (its `accuracy` corpus):
+/// a disk 1e308 away with its centre on the horizon (true value below the
+/// smallest f64: 0), a one-sided disk of radius 1e100 … 1e300 standing on
+/// the horizon 1 m away (π/2: half the sky's projected solid angle), and
+/// a receiver exactly in the plane of a polygon, at its centre (edge-on:
+/// 0). Against the oracle: zeros exactly, the rest within
+/// [`QUADRATURE_BOUND`].
+#[test]
+fn fuzz_corpus_accuracy_cases() {
+    let far = DVec3::new(0.0, 0.0, 1e308);
+    let e = raw::disk_irradiance(
+        1.0,
+        DVec3::ZERO,
+        DVec3::X,
+        far,
+        DVec3::Z,
+        1.0,
+        Emission::TwoSided,
+    );
+    assert_eq!(e, Ok(0.0));
+    for radius in [1e100, 1e150, 1e200, 1e300] {
+        let c = DVec3::new(0.0, 1.0, 0.0);
+        let e = raw::disk_irradiance(
+            1.0,
+            DVec3::ZERO,
+            DVec3::X,
+            c,
+            -DVec3::Y,
+            radius,
+            Emission::OneSided,
+        )
+        .unwrap();
+        let exact = oracle::disk(1.0, DVec3::ZERO, DVec3::X, c, -DVec3::Y, radius, false);
+        assert!(exact.rel_err(e) < QUADRATURE_BOUND, "R {radius:e}: {e}");
+    }
+    let n = DVec3::new(
+        -0.0029954889856234823,
+        -0.0025262169140394053,
+        -0.0006210410536041233,
+    );
+    let v = [
+        DVec3::new(5659.078892993954, -8841.36910730735, 8668.521441803518),
+        DVec3::new(-5659.07883969625, 8841.369063617602, -8668.521521158817),
+        DVec3::new(-5659.078892993954, 8841.36910730735, -8668.521441803518),
+        DVec3::new(5659.07883969625, -8841.369063617602, 8668.521521158817),
+    ];
+    assert!(oracle::polygon(1.0, DVec3::ZERO, raw::normal(n), &v, false).is_zero());
+    assert_eq!(
+        raw::polygon_irradiance(1.0, DVec3::ZERO, n, &v, Emission::OneSided),
+        Ok(0.0)
+    );
+}
+
 /// The hanging case: a disk of radius ~1e188 whose plane crosses
 /// the receiver's, seen from a receiver 8.4e116 away from its centre. It
 /// used to run for minutes (|R|² overflowed to ∞, the quadrature never
