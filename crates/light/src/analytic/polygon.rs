@@ -29,25 +29,15 @@ use super::scaled;
 use super::Emission;
 use crate::receiver::Receiver;
 use glam::DVec3;
-use lambert_geometry::f64::ConvexPolygon;
+use lambert_geometry::f64::{clip_to_half_space, ConvexPolygon};
 
-/// The part of the polygon `vertices` with n·(x − p) > 0 (Sutherland–
-/// Hodgman against the receiver's plane through `p` with normal `n`).
-/// Vertices on the plane are kept; crossing edges are cut at
-/// vᵢ + (vⱼ − vᵢ) dᵢ/(dᵢ − dⱼ), dᵢ = n·(vᵢ − p).
+/// The part of the polygon `vertices` with n·(x − p) ≥ 0 (Sutherland–
+/// Hodgman against the receiver's plane through `p` with normal `n`, as
+/// [`clip_to_half_space`]). Vertices on the plane are kept; crossing edges
+/// are cut at vᵢ + (vⱼ − vᵢ) dᵢ/(dᵢ − dⱼ), dᵢ = n·(vᵢ − p).
 pub fn clip_polygon_to_hemisphere(p: DVec3, n: DVec3, vertices: &[DVec3]) -> Vec<DVec3> {
-    let k = vertices.len();
-    let mut out = Vec::with_capacity(k + 1);
-    for i in 0..k {
-        let (a, b) = (vertices[i], vertices[(i + 1) % k]);
-        let (da, db) = (n.dot(a - p), n.dot(b - p));
-        if da >= 0.0 {
-            out.push(a);
-        }
-        if (da > 0.0 && db < 0.0) || (da < 0.0 && db > 0.0) {
-            out.push(a + (b - a) * (da / (da - db)));
-        }
-    }
+    let mut out = Vec::with_capacity(vertices.len() + 1);
+    clip_to_half_space(p, n, vertices, |v| out.push(v));
     out
 }
 
