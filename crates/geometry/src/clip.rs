@@ -5,10 +5,12 @@
 //! convex polygon with at most one vertex more: with dᵢ = n·(vᵢ − p), keep
 //! every vertex with dᵢ ≥ 0 and insert, on every edge whose ends lie
 //! strictly on opposite sides, the crossing vᵢ + (vⱼ − vᵢ)·dᵢ/(dᵢ − dⱼ).
-//! The closed forms clip a polygon light at the receiver's plane this way,
-//! and the light samplers clip it at a shading point's horizon, the one
-//! into a `Vec`, the other into a buffer on the stack: the vertices are
-//! handed to a callback.
+//! The light samplers clip a polygon light at a shading point's horizon
+//! this way, into a buffer on the stack, so the vertices are handed to a
+//! callback. (The closed forms clip with heights computed exactly, in
+//! double-double, so that the cut does not depend on rounding however far
+//! the polygon; a sampler needs no more than the rounding of its own
+//! arithmetic.)
 
 macro_rules! clip_impl {
     ($p:ident, $v2:ident, $v3:ident) => {

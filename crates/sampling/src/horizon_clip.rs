@@ -12,7 +12,7 @@
 //!
 //! The cut is one step of Sutherland–Hodgman clipping (Sutherland & Hodgman,
 //! "Reentrant polygon clipping", CACM 17(1), 1974; `lambert_geometry`'s
-//! `clip_to_half_space`, which the closed forms use too): with
+//! `clip_to_half_space`): with
 //! dᵢ = n·(vᵢ − p), keep every vertex with dᵢ ≥ 0 and insert, on every edge
 //! whose ends lie strictly on opposite sides, the crossing
 //! vᵢ + (vⱼ − vᵢ)·dᵢ/(dᵢ − dⱼ).
