@@ -14,16 +14,29 @@ use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
 /// handful even at 2^14), and MIS with the balance heuristic carries
 /// p_c/(p_c + p_light) ≈ 1e-4 of E in the same rare cosine hits, a skewed
 /// term as large as the standard error there (measured: 25 misses in 72
-/// 99 % intervals). The power heuristic squares that weight away. Every
-/// other pair sees its light in a fixed fraction of its samples.
+/// 99 % intervals). The power heuristic squares that weight away.
+///
+/// The other exceptions are the heavy-tailed estimators of the unit disk
+/// 0.01 above the receiver (`disk-close-under`): sampling the disk by area
+/// (the `area` strategy, and `light`, which samples disks by area) gives
+/// values L·A·h²/d⁴ up to L·A/h² ≈ 3e4·L, with second moment ≈ πL²A/(3h²),
+/// a relative variance ≈ A/(3πh²) ≈ 3e3 carried by the 1e-4 of samples
+/// nearest the receiver. The pilot measures a need for N ≈ 3e5, beyond the
+/// suites; below that the sample variance understates the spread (the
+/// estimator says so with its heavy-tail warning).
+///
+/// Every other pair sees its light in a fixed fraction of its samples.
 pub fn clt_applies(scene: &str, strategy: Strategy) -> bool {
-    !(scene == "disk-coaxial-small"
+    let rare_hits = scene == "disk-coaxial-small"
         && matches!(
             strategy,
             Strategy::UniformHemisphere
                 | Strategy::CosineHemisphere
                 | Strategy::Mis(Heuristic::Balance)
-        ))
+        );
+    let heavy_tail =
+        scene == "disk-close-under" && matches!(strategy, Strategy::Light | Strategy::Area);
+    !(rare_hits || heavy_tail)
 }
 
 /// z = (estimate − truth)/standard error as a standard normal score, so

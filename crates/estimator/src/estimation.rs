@@ -14,6 +14,30 @@
 //! Work is split into fixed chunks of sample indices, run on `threads`
 //! threads and merged in chunk order, so results are identical to the bit
 //! for any thread count (see [`crate::statistics::run_chunked`]).
+//!
+//! **Hits.** In the same pass as the sums, every chunk counts the samples
+//! whose value is not 0 (the estimate's *hits*,
+//! [`EstimateReport::hits`]) and, per part of each emitter's estimate (one
+//! part per technique, two for MIS), the samples in which that part was
+//! not 0. Those counts, with each part's known bound
+//! ([`crate::strategy::PartBound`]), decide the interval.
+//!
+//! **The interval** ([`crate::interval`]). `m ± q·se` when every part had
+//! at least [`CLT_MIN_EVENTS`](crate::interval::CLT_MIN_EVENTS) hits; with
+//! fewer (including none), rare-event bounds from the hit counts and the
+//! bounds on a sample's value: with 0 hits the interval is one-sided,
+//! [0, B·(1 − α^{1/N})] ⊂ [0, B·(−ln α)/N] for a value bounded by B, since
+//! P(0 hits) = (1 − p)^N ≤ α ⇒ p ≤ −ln α/N. Such estimates carry a
+//! [`warning`](EstimateReport::warning).
+//!
+//! **The rounding floor.** The reported standard error is never below
+//! (5u + 4(N + 2)u²)·(m + |δ|), u = 2⁻⁵³, δ the delta lights' irradiance:
+//! a bound on the floating-point error of the accumulated mean (compensated
+//! chunk sums merged in order, the replicates' weighted mean, the delta
+//! lights added), derived in [`crate::statistics::rounding`]. It binds
+//! where every sample has nearly the same value (light sampling of a cap
+//! 1e-7 rad wide, of a triangle of 1e-9 sr, cosine sampling of a sky),
+//! where s/√N would claim digits the arithmetic did not produce.
 
 use std::fmt;
 use std::str::FromStr;
@@ -22,8 +46,11 @@ use std::time::Instant;
 use glam::DVec2;
 use lambert_sampling::sequence::{SampleSequence, Sobol, Stratified};
 
-use crate::statistics::{run_chunked, ConfidenceInterval, Estimate, StatisticsError};
-use crate::strategy::{PreparedEmitter, Strategy};
+use crate::interval::{
+    honest_interval, ErrorSource, EstimateWarning, IntervalKind, PartTally, SampleSummary, LEVEL,
+};
+use crate::statistics::{run_chunked_merge, Estimate, Mergeable, StatisticsError};
+use crate::strategy::{PartHits, PreparedEmitter, Strategy};
 use lambert_light::scene::Scene;
 
 /// Samples per parallel chunk.
@@ -101,10 +128,26 @@ pub struct EstimateConfig {
 pub struct EstimateReport {
     /// The estimated irradiance, W/m².
     pub mean: f64,
-    /// Its standard error (0 when the estimate is exact).
+    /// Its standard error: s/√N (randomized QMC: the spread of the
+    /// replicate means over √R), never below the rounding floor (module
+    /// docs), so never 0 for a non-zero estimate.
     pub std_error: f64,
-    /// The 99 % confidence interval.
+    /// The confidence interval at [`level`](Self::level) — 99 % from
+    /// [`estimate`], hence the name; [`estimate_at_level`] sets another —
+    /// formed as [`interval`](Self::interval) says (module docs). Both ends
+    /// are finite and hold `mean`; the upper end is f64::MAX only when the
+    /// bound on a sample's value overflows f64.
     pub ci99: (f64, f64),
+    /// The confidence level of `ci99`.
+    pub level: f64,
+    /// How `ci99` was formed.
+    pub interval: IntervalKind,
+    /// Why `ci99` is not the plain CLT interval (few or no hits, few
+    /// misses, a heavy tail); `None` when it is.
+    pub warning: Option<EstimateWarning>,
+    /// Samples whose value was not 0 (of the sampled lights; delta lights
+    /// are exact and not sampled).
+    pub hits: u64,
     /// Samples used.
     pub samples: u64,
     /// Wall time, seconds.
@@ -238,8 +281,30 @@ pub(crate) fn mix(seed: u64, k: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// Estimates the scene's irradiance as configured.
+/// Estimates the scene's irradiance as configured, with its 99 % interval.
 pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport, EstimateError> {
+    estimate_at_level(scene, config, LEVEL)
+}
+
+/// [`estimate`] with the interval (`ci99`) at confidence `level` instead of
+/// 0.99: for judging a family of estimates at a Šidák-corrected level, or
+/// for a 95 % interval. The samples, mean and standard error are those of
+/// [`estimate`], to the bit.
+///
+/// # Errors
+/// As [`estimate`], and [`EstimateError::Config`] (field `level`) unless
+/// 0 < level < 1.
+pub fn estimate_at_level(
+    scene: &Scene,
+    config: &EstimateConfig,
+    level: f64,
+) -> Result<EstimateReport, EstimateError> {
+    if !(level > 0.0 && level < 1.0) {
+        return Err(EstimateError::Config {
+            field: "level",
+            problem: format!("must lie in (0, 1), got {level}"),
+        });
+    }
     if config.threads == 0 {
         return Err(EstimateError::Config {
             field: "threads",
@@ -264,17 +329,27 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
             quantity: "the summed irradiance of the point and directional lights",
         });
     }
-    let (mean, std_error, interval, variance) = if prepared.is_empty() {
-        // Only delta lights: exact.
-        (delta, 0.0, (delta, delta), 0.0)
+    let part_count: usize = prepared.iter().map(|p| p.parts().len()).sum();
+    let n = config.samples;
+    // Randomized QMC: per part, the hit count of every replicate when they
+    // were all equal (crate::interval explains why that matters).
+    let mut fixed_counts: Vec<Option<u64>> = Vec::new();
+    let (sampled, part_hits, summary, variance) = if prepared.is_empty() {
+        // Only delta lights: exact (to the rounding floor).
+        let summary = SampleSummary {
+            n,
+            mean: delta,
+            sampled_mean: 0.0,
+            delta,
+            std_error: 0.0,
+            source: ErrorSource::Samples,
+        };
+        (Estimate::new(), Vec::new(), summary, 0.0)
     } else if !rqmc {
-        let e = run_chunked(
-            config.samples,
-            CHUNK_SIZE,
-            config.threads,
-            |chunk, range| independent_chunk(&prepared, scene, config.seed, chunk, range),
-        )?;
-        if e.non_finite() > 0 {
+        let c: ChunkStats = run_chunked_merge(n, CHUNK_SIZE, config.threads, |chunk, range| {
+            independent_chunk(&prepared, part_count, scene, config.seed, chunk, range)
+        })?;
+        if c.estimate.non_finite() > 0 {
             return Err(first_non_finite_independent(
                 &prepared,
                 scene,
@@ -282,18 +357,47 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
                 config.samples,
             ));
         }
-        summarize(&e, delta)?
+        let sampled_mean = c.estimate.mean().ok_or(EstimateError::Overflow {
+            quantity: "the sum of the samples",
+        })?;
+        if !(sampled_mean + delta).is_finite() {
+            return Err(EstimateError::Overflow {
+                quantity: "the mean plus the delta lights",
+            });
+        }
+        let std_error = c.estimate.std_error().ok_or(EstimateError::Overflow {
+            quantity: "the sum of the squared deviations (the variance)",
+        })?;
+        let summary = SampleSummary {
+            n,
+            mean: sampled_mean + delta,
+            sampled_mean,
+            delta,
+            std_error,
+            source: ErrorSource::Samples,
+        };
+        let variance = c.estimate.variance().unwrap_or(0.0);
+        (c.estimate, c.part_hits, summary, variance)
     } else {
         let r = RQMC_REPLICATES;
         let mut replicate_means = Estimate::new();
         let mut weighted = crate::statistics::NeumaierSum::new();
+        let mut all = ChunkStats::default();
+        // Per part: the hits of every replicate, while they are all equal.
+        let mut same: Option<Vec<Option<u64>>> = None;
         for k in 0..r {
-            let n_k = config.samples / r + u64::from(k < config.samples % r);
+            let n_k = n / r + u64::from(k < n % r);
             let seed = mix(config.seed, k);
-            let e = match config.sequence {
-                SequenceKind::Sobol => {
-                    replicate_estimate(&prepared, scene, &Sobol::new(seed), n_k, config.threads, k)?
-                }
+            let c: ChunkStats = match config.sequence {
+                SequenceKind::Sobol => replicate_estimate(
+                    &prepared,
+                    part_count,
+                    scene,
+                    &Sobol::new(seed),
+                    n_k,
+                    config.threads,
+                    k,
+                )?,
                 SequenceKind::Stratified => {
                     let strata = u32::try_from(n_k).map_err(|_| EstimateError::Config {
                         field: "samples",
@@ -305,18 +409,30 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
                         field: "samples",
                         problem: e.to_string(),
                     })?;
-                    replicate_estimate(&prepared, scene, &seq, n_k, config.threads, k)?
+                    replicate_estimate(&prepared, part_count, scene, &seq, n_k, config.threads, k)?
                 }
                 SequenceKind::Independent => unreachable!(),
             };
-            let m = e.mean().ok_or(EstimateError::Overflow {
+            let m = c.estimate.mean().ok_or(EstimateError::Overflow {
                 quantity: "the sum of one randomization's samples",
             })?;
             replicate_means.push(m);
             weighted.add(m * n_k as f64);
+            match &mut same {
+                None => same = Some(c.part_hits.iter().map(|&h| Some(h)).collect()),
+                Some(same) => {
+                    for (s, &h) in same.iter_mut().zip(&c.part_hits) {
+                        if *s != Some(h) {
+                            *s = None;
+                        }
+                    }
+                }
+            }
+            all.merge(&c);
         }
-        let mean = weighted.sum() / config.samples as f64 + delta;
-        if !mean.is_finite() {
+        fixed_counts = same.unwrap_or_default();
+        let sampled_mean = weighted.sum() / n as f64;
+        if !(sampled_mean + delta).is_finite() {
             return Err(EstimateError::Overflow {
                 quantity: "the mean over the randomizations plus the delta lights",
             });
@@ -324,19 +440,43 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
         let se = replicate_means.std_error().ok_or(EstimateError::Overflow {
             quantity: "the spread of the randomizations' means",
         })?;
-        let ci = ConfidenceInterval::new(mean, se, r, 0.99);
-        let per_replicate = (config.samples / r) as f64;
+        let per_replicate = (n / r) as f64;
+        let summary = SampleSummary {
+            n,
+            mean: sampled_mean + delta,
+            sampled_mean,
+            delta,
+            std_error: se,
+            source: ErrorSource::Replicates(r),
+        };
         (
-            mean,
-            se,
-            (ci.lower, ci.upper),
+            all.estimate,
+            all.part_hits,
+            summary,
             se * se * r as f64 * per_replicate,
         )
     };
+    // The sampled emitters' indices in the scene (prepare() skips the delta
+    // lights), beside each of their parts.
+    let sampled_emitters = (0..scene.emitters.len()).filter(|&i| !scene.emitters[i].is_delta());
+    let tallies: Vec<PartTally> = prepared
+        .iter()
+        .zip(sampled_emitters)
+        .flat_map(|(p, emitter)| p.parts().iter().map(move |&bound| (emitter, bound)))
+        .zip(part_hits.iter().copied().chain(std::iter::repeat(0)))
+        .zip(fixed_counts.iter().copied().chain(std::iter::repeat(None)))
+        .map(|(((emitter, bound), hits), replicate_hits)| PartTally {
+            emitter,
+            bound,
+            hits,
+            replicate_hits,
+        })
+        .collect();
+    let honest = honest_interval(&summary, &tallies, level);
     for (value, quantity) in [
-        (std_error, "the standard error"),
-        (interval.0, "the 99 % interval's lower end"),
-        (interval.1, "the 99 % interval's upper end"),
+        (honest.std_error, "the standard error"),
+        (honest.ci.0, "the interval's lower end"),
+        (honest.ci.1, "the interval's upper end"),
         (variance, "the variance of one sample's estimate"),
     ] {
         if !value.is_finite() {
@@ -345,14 +485,53 @@ pub fn estimate(scene: &Scene, config: &EstimateConfig) -> Result<EstimateReport
     }
     let seconds = start.elapsed().as_secs_f64();
     Ok(EstimateReport {
-        mean,
-        std_error,
-        ci99: interval,
+        mean: summary.mean,
+        std_error: honest.std_error,
+        ci99: honest.ci,
+        level,
+        interval: honest.kind,
+        warning: honest.warning,
+        hits: sampled.nonzero(),
         samples: config.samples,
         seconds,
         ns_per_sample: seconds * 1e9 / config.samples as f64,
         sample_variance: variance,
     })
+}
+
+/// A chunk's estimate and, for every part of every emitter's estimate (in
+/// emitter order), the samples in which that part was not 0.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct ChunkStats {
+    estimate: Estimate,
+    part_hits: Vec<u64>,
+}
+
+impl ChunkStats {
+    /// Collects the hit counts that [`PreparedEmitter::evaluate_batch`]
+    /// returned for each emitter.
+    fn new(estimate: Estimate, per_emitter: &[(usize, PartHits)], part_count: usize) -> Self {
+        let mut part_hits = Vec::with_capacity(part_count);
+        for &(parts, hits) in per_emitter {
+            part_hits.extend_from_slice(&hits[..parts]);
+        }
+        ChunkStats {
+            estimate,
+            part_hits,
+        }
+    }
+}
+
+impl Mergeable for ChunkStats {
+    fn merge(&mut self, other: &Self) {
+        self.estimate.merge(&other.estimate);
+        if self.part_hits.len() < other.part_hits.len() {
+            self.part_hits.resize(other.part_hits.len(), 0);
+        }
+        for (a, b) in self.part_hits.iter_mut().zip(&other.part_hits) {
+            *a += b;
+        }
+    }
 }
 
 /// Generates the uniform points of one chunk of an independent-sample
@@ -399,20 +578,24 @@ fn independent_points(
 
 /// One chunk of an independent-sample estimate: the emitters add their
 /// estimates for the chunk's points ([`independent_points`]) into a
-/// buffer, which is summarised by two passes ([`Estimate::from_values`]).
+/// buffer, counting their parts' hits, and the buffer is summarised by two
+/// passes ([`Estimate::from_values`], which counts the samples' hits).
 fn independent_chunk(
     prepared: &[PreparedEmitter],
+    part_count: usize,
     scene: &Scene,
     seed: u64,
     chunk: u64,
     range: std::ops::Range<u64>,
-) -> Estimate {
+) -> ChunkStats {
     let n = (range.end - range.start) as usize;
     let mut values = vec![0.0f64; n];
+    let mut hits = Vec::with_capacity(prepared.len());
     independent_points(prepared, seed, chunk, n, |k, u, u2| {
-        prepared[k].evaluate_batch(&scene.receiver, u, u2, &mut values);
+        let h = prepared[k].evaluate_batch(&scene.receiver, u, u2, &mut values);
+        hits.push((prepared[k].parts().len(), h));
     });
-    Estimate::from_values(&values)
+    ChunkStats::new(Estimate::from_values(&values), &hits, part_count)
 }
 
 /// The points of samples `range` of a randomized-QMC sequence, handed to
@@ -449,40 +632,45 @@ fn sequence_points<S: SampleSequence>(
 
 /// One chunk of a randomized-QMC estimate: the points of
 /// [`sequence_points`], evaluated emitter by emitter through
-/// [`PreparedEmitter::evaluate_batch`].
+/// [`PreparedEmitter::evaluate_batch`], counting the parts' hits.
 fn sequence_chunk<S: SampleSequence>(
     prepared: &[PreparedEmitter],
+    part_count: usize,
     scene: &Scene,
     sequence: &S,
     range: std::ops::Range<u64>,
-) -> Estimate {
+) -> ChunkStats {
     let mut values = vec![0.0f64; (range.end - range.start) as usize];
+    let mut hits = Vec::with_capacity(prepared.len());
     sequence_points(prepared, sequence, range, |k, u, u2| {
-        prepared[k].evaluate_batch(&scene.receiver, u, u2, &mut values);
+        let h = prepared[k].evaluate_batch(&scene.receiver, u, u2, &mut values);
+        hits.push((prepared[k].parts().len(), h));
     });
-    Estimate::from_values(&values)
+    ChunkStats::new(Estimate::from_values(&values), &hits, part_count)
 }
 
 /// Randomization `k` of a randomized-QMC estimate: samples `0..n` of
 /// `sequence`, or the first non-finite one as an error.
+#[allow(clippy::too_many_arguments)]
 fn replicate_estimate<S: SampleSequence>(
     prepared: &[PreparedEmitter],
+    part_count: usize,
     scene: &Scene,
     sequence: &S,
     n: u64,
     threads: usize,
     k: u64,
-) -> Result<Estimate, EstimateError> {
-    let e = run_chunked(n, CHUNK_SIZE, threads, |_, range| {
-        sequence_chunk(prepared, scene, sequence, range)
+) -> Result<ChunkStats, EstimateError> {
+    let c: ChunkStats = run_chunked_merge(n, CHUNK_SIZE, threads, |_, range| {
+        sequence_chunk(prepared, part_count, scene, sequence, range)
     })?;
-    if e.non_finite() > 0 {
+    if c.estimate.non_finite() > 0 {
         return Err(with_randomization(
             first_non_finite_in(prepared, scene, sequence, n),
             k,
         ));
     }
-    Ok(e)
+    Ok(c)
 }
 
 /// The first non-finite sample of a chunk whose points `points` hands out
@@ -605,25 +793,6 @@ fn with_randomization(error: EstimateError, k: u64) -> EstimateError {
     }
 }
 
-/// Mean (plus the delta lights), standard error, 99 % interval and
-/// per-sample variance of an independent-sample estimate whose samples are
-/// all finite (at least 2 of them).
-fn summarize(e: &Estimate, delta: f64) -> Result<(f64, f64, (f64, f64), f64), EstimateError> {
-    let mean = e.mean().ok_or(EstimateError::Overflow {
-        quantity: "the sum of the samples",
-    })? + delta;
-    if !mean.is_finite() {
-        return Err(EstimateError::Overflow {
-            quantity: "the mean plus the delta lights",
-        });
-    }
-    let se = e.std_error().ok_or(EstimateError::Overflow {
-        quantity: "the sum of the squared deviations (the variance)",
-    })?;
-    let ci = ConfidenceInterval::new(mean, se, e.n(), 0.99);
-    Ok((mean, se, (ci.lower, ci.upper), e.variance().unwrap_or(0.0)))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -664,12 +833,17 @@ mod tests {
 
     /// Randomized-QMC estimates are pinned to the bit (value stability of
     /// the chunk path: a faster way of filling the points must give the same
-    /// points), on one thread and on two.
+    /// points), on one thread and on two. (Re-pinned twice: when the
+    /// standard error gained its rounding floor — the exact estimates,
+    /// cosine sampling of a sky, report the floor instead of 0; with those
+    /// mapped back to 0 the digests were the earlier 0xe7d0_0c71_d771_a5d9
+    /// and 0xcf17_07e3_69a6_464d, so no mean and no other standard error
+    /// moved — and when the built-in scene disk-close-under was added.)
     #[test]
     fn randomized_qmc_estimates_are_pinned() {
         let pinned = [
-            (SequenceKind::Sobol, 0xe7d0_0c71_d771_a5d9_u64),
-            (SequenceKind::Stratified, 0xcf17_07e3_69a6_464d),
+            (SequenceKind::Sobol, 0x46bf_97f5_e9e2_3639_u64),
+            (SequenceKind::Stratified, 0x476d_b079_54df_d3ee),
         ];
         for (sequence, want) in pinned {
             let one = rqmc_bits(sequence, 1);

@@ -9,6 +9,7 @@
 
 pub mod clt;
 pub mod estimation;
+pub mod interval;
 pub mod point;
 pub mod statistics;
 pub mod strategy;
