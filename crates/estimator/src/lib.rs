@@ -8,6 +8,7 @@
 //! from `lambert-light`; warps and sequences from `lambert-sampling`.
 
 pub mod chunk;
+pub mod clt;
 pub mod estimation;
 pub mod interval;
 pub mod point;
