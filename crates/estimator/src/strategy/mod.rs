@@ -40,6 +40,7 @@
 //! dimensions of the sequence, and the sample's value is the sum of the
 //! per-emitter estimates: unbiased, since each term is.
 
+mod batch;
 mod emitter_area;
 mod emitter_light;
 mod occluded;
