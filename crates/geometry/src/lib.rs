@@ -41,6 +41,7 @@
 pub mod precision;
 
 mod batch;
+mod clip;
 mod disk;
 mod error;
 mod frame;
@@ -59,6 +60,7 @@ pub use error::GeometryError;
 macro_rules! public_api {
     ($p:ident) => {
         pub use crate::batch::$p::RayBatch;
+        pub use crate::clip::$p::clip_to_half_space;
         pub use crate::disk::$p::Disk;
         pub use crate::frame::$p::Frame;
         pub use crate::parallelogram::$p::Parallelogram;

@@ -167,7 +167,7 @@ macro_rules! hashes {
             ),
             (
                 "polygon_light",
-                Box::new(PolygonLightSampler::new(polygon.clone())),
+                Box::new(PolygonLightSampler::new(polygon.clone()).unwrap()),
             ),
             ("sphere_area", Box::new(SphereAreaSampler::new(sphere))),
             ("disk_area_light", Box::new(DiskAreaSampler::new(disk))),

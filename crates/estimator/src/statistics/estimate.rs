@@ -81,6 +81,8 @@ pub struct Estimate {
     n: u64,
     /// Non-finite samples pushed (not in the sums).
     non_finite: u64,
+    /// Finite samples pushed that were not 0 (the hits).
+    nonzero: u64,
     /// Σx, compensated.
     sum: NeumaierSum,
     /// The mean Σx / n as an unevaluated pair `mean_hi + mean_lo`.
@@ -102,12 +104,55 @@ fn split_mean(sum: &NeumaierSum, n: u64) -> (f64, f64) {
     (hi, (r + c) / nf)
 }
 
+/// The compensated sum of `f(x)` over the finite values of `values`, in
+/// four lanes (value i in lane i mod 4) merged in lane order, as
+/// [`Estimate::from_values`] documents.
+///
+/// Branch-free, so it vectorises (the four lanes are one vector): a
+/// non-finite value adds 0 to its lane instead of being skipped, which
+/// leaves the lane's bits as they were (its running sum starts at +0 and
+/// can never become −0 by round-to-nearest additions, so s + 0 = s and the
+/// rounding error (s − s) + 0 = +0 adds nothing to the compensation).
+#[inline(always)]
+fn lane_sums(values: &[f64], f: impl Fn(f64) -> f64) -> NeumaierSum {
+    const LANES: usize = 4;
+    let mut s = [0.0f64; LANES];
+    let mut c = [0.0f64; LANES];
+    let add = |s: &mut f64, c: &mut f64, x: f64| {
+        let y = if x.is_finite() { f(x) } else { 0.0 };
+        // Neumaier's step (NeumaierSum::add), written with a select.
+        let t = *s + y;
+        let err = if s.abs() >= y.abs() {
+            (*s - t) + y
+        } else {
+            (y - t) + *s
+        };
+        *c += err;
+        *s = t;
+    };
+    let mut blocks = values.chunks_exact(LANES);
+    for block in blocks.by_ref() {
+        for j in 0..LANES {
+            add(&mut s[j], &mut c[j], block[j]);
+        }
+    }
+    for (j, &x) in blocks.remainder().iter().enumerate() {
+        add(&mut s[j], &mut c[j], x);
+    }
+    let mut sum = NeumaierSum::from_parts(s[0], c[0]);
+    for j in 1..LANES {
+        sum.merge(&NeumaierSum::from_parts(s[j], c[j]));
+    }
+    sum
+}
+
 impl Estimate {
     /// The empty estimate (n = 0).
     pub const fn new() -> Self {
         Self {
             n: 0,
             non_finite: 0,
+            nonzero: 0,
             sum: NeumaierSum::new(),
             mean_hi: 0.0,
             mean_lo: 0.0,
@@ -126,6 +171,7 @@ impl Estimate {
         }
         let before = (x - self.mean_hi) - self.mean_lo;
         self.n += 1;
+        self.nonzero += u64::from(x != 0.0);
         self.sum.add(x);
         let (hi, lo) = split_mean(&self.sum, self.n);
         self.mean_hi = hi;
@@ -140,37 +186,21 @@ impl Estimate {
     /// Welford's update and cost a fraction of a push per sample, so the
     /// estimators fill a chunk's values in a buffer and summarise it here;
     /// the result merges like any other estimate. Non-finite values are
-    /// counted in [`non_finite`](Estimate::non_finite).
+    /// counted in [`non_finite`](Estimate::non_finite), non-zero ones in
+    /// [`nonzero`](Estimate::nonzero) (in the first pass, with the sums).
+    #[inline(always)]
     pub fn from_values(values: &[f64]) -> Estimate {
-        // Four interleaved compensated sums, merged in a fixed order: the
-        // same accuracy as one, without one long dependency chain.
-        const LANES: usize = 4;
-        let mut lanes = [NeumaierSum::new(); LANES];
+        // Four interleaved compensated sums (value i goes to lane i mod 4),
+        // merged in a fixed order: the same accuracy as one, without one
+        // long dependency chain.
         let mut n = 0u64;
-        let mut non_finite = 0u64;
-        let mut blocks = values.chunks_exact(LANES);
-        for block in blocks.by_ref() {
-            for (lane, &x) in lanes.iter_mut().zip(block) {
-                if x.is_finite() {
-                    lane.add(x);
-                    n += 1;
-                } else {
-                    non_finite += 1;
-                }
-            }
+        let mut nonzero = 0u64;
+        for &x in values {
+            n += u64::from(x.is_finite());
+            nonzero += u64::from(x.is_finite() && x != 0.0);
         }
-        for (lane, &x) in lanes.iter_mut().zip(blocks.remainder()) {
-            if x.is_finite() {
-                lane.add(x);
-                n += 1;
-            } else {
-                non_finite += 1;
-            }
-        }
-        let mut sum = lanes[0];
-        for lane in &lanes[1..] {
-            sum.merge(lane);
-        }
+        let non_finite = values.len() as u64 - n;
+        let sum = lane_sums(values, |x| x);
         if n == 0 {
             return Estimate {
                 non_finite,
@@ -178,29 +208,14 @@ impl Estimate {
             };
         }
         let (mean_hi, mean_lo) = split_mean(&sum, n);
-        let mut squares = [NeumaierSum::new(); LANES];
-        let mut blocks = values.chunks_exact(LANES);
-        for block in blocks.by_ref() {
-            for (lane, &x) in squares.iter_mut().zip(block) {
-                if x.is_finite() {
-                    let d = (x - mean_hi) - mean_lo;
-                    lane.add(d * d);
-                }
-            }
-        }
-        for (lane, &x) in squares.iter_mut().zip(blocks.remainder()) {
-            if x.is_finite() {
-                let d = (x - mean_hi) - mean_lo;
-                lane.add(d * d);
-            }
-        }
-        let mut m2 = squares[0];
-        for lane in &squares[1..] {
-            m2.merge(lane);
-        }
+        let m2 = lane_sums(values, |x| {
+            let d = (x - mean_hi) - mean_lo;
+            d * d
+        });
         Estimate {
             n,
             non_finite,
+            nonzero,
             sum,
             mean_hi,
             mean_lo,
@@ -234,6 +249,7 @@ impl Estimate {
             let block = Estimate {
                 n: k,
                 non_finite: 0,
+                nonzero: if x != 0.0 { k } else { 0 },
                 sum: NeumaierSum::from_parts(hi, lo),
                 mean_hi: x,
                 mean_lo: 0.0,
@@ -268,6 +284,7 @@ impl Estimate {
         self.m2.add(delta * delta * (na * (nb / n as f64)));
         self.n = n;
         self.non_finite += other.non_finite;
+        self.nonzero += other.nonzero;
         let (hi, lo) = split_mean(&self.sum, n);
         self.mean_hi = hi;
         self.mean_lo = lo;
@@ -291,6 +308,14 @@ impl Estimate {
         self.non_finite
     }
 
+    /// The number of finite samples pushed that were not 0: the *hits* of a
+    /// Monte Carlo estimate whose samples are 0 wherever the integrand is
+    /// not seen. With few hits the sample variance says little about the
+    /// error (see [`bounded`](super::bounded)).
+    pub fn nonzero(&self) -> u64 {
+        self.nonzero
+    }
+
     /// True if no sample, finite or not, was pushed.
     pub fn is_empty(&self) -> bool {
         self.n == 0 && self.non_finite == 0
@@ -303,16 +328,19 @@ impl Estimate {
     }
 
     /// The compensated sum Σx (0 for n = 0); `None` after a non-finite
-    /// sample or an overflow.
+    /// sample or if the sum overflowed.
     pub fn sum(&self) -> Option<f64> {
-        self.is_finite().then(|| self.sum.sum())
+        let s = self.sum.sum();
+        (self.non_finite == 0 && s.is_finite()).then_some(s)
     }
 
     /// The sample mean m = Σx / n, from the compensated sum (module docs).
-    /// `None` if n = 0, after a non-finite sample, or on overflow.
+    /// `None` if n = 0, after a non-finite sample, or if the sum
+    /// overflowed. (An overflow of M₂ alone, from samples above ~1e154,
+    /// leaves the mean defined and only the variance `None`.)
     pub fn mean(&self) -> Option<f64> {
         let m = self.mean_hi + self.mean_lo;
-        (self.n > 0 && self.is_finite() && m.is_finite()).then_some(m)
+        (self.n > 0 && self.sum().is_some() && m.is_finite()).then_some(m)
     }
 
     /// The sample (unbiased) variance s² = M₂ / (n − 1), M₂ = Σ(x − m)²

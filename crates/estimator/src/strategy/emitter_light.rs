@@ -26,6 +26,16 @@ pub struct LightDirection {
 /// spherical triangles chosen by solid angle (Arvo 1995) for polygons
 /// ([`PolygonLightSampler`]), and area sampling converted to solid angle for
 /// disks ([`DiskAreaSampler`]; no solid-angle sampler of a disk yet).
+///
+/// **What is sampled.** Polygons are clipped to the receiver's hemisphere
+/// first, so every sample sees the light and the density is 1/Ω of the
+/// visible part. Spheres' and caps' cones and disks are sampled whole:
+/// samples below the horizon score 0 (the sampling crate's `LightSampler`
+/// docs say why there is no closed-form sampler of the visible part). For a
+/// disk, sampling by area also makes the estimate heavy-tailed when the
+/// receiver is close to it (see [`EmitterArea`](super::EmitterArea)); `auto`
+/// therefore never uses it alone, but inside MIS (power heuristic), whose
+/// weights bound every sample's value by 3πL/2.
 #[derive(Clone, Debug)]
 pub enum EmitterLight {
     /// The whole sphere of directions, uniform.
@@ -55,11 +65,17 @@ impl EmitterLight {
                 Err(_) => EmitterLight::None,
             },
             Emitter::Disk(d) => EmitterLight::Disk(DiskAreaSampler::new(d.disk), *receiver),
-            Emitter::Polygon(poly) => match PolygonLightSampler::new(poly.polygon.clone()).at(p) {
-                PolygonSolidAngle::Fan { triangles, .. } if triangles.is_empty() => {
-                    EmitterLight::None
-                }
-                prepared => EmitterLight::Polygon(prepared),
+            Emitter::Polygon(poly) => match PolygonLightSampler::new(poly.polygon.clone()) {
+                Ok(sampler) => match sampler.at(p, receiver.normal) {
+                    PolygonSolidAngle::Fan { triangles, .. } if triangles.is_empty() => {
+                        EmitterLight::None
+                    }
+                    prepared => EmitterLight::Polygon(prepared),
+                },
+                // More vertices than the sampler holds: rejected when the
+                // emitter is built (`PolygonLight::new`), so unreachable
+                // from a scene; nothing to sample.
+                Err(_) => EmitterLight::None,
             },
             Emitter::Point(_) | Emitter::Directional(_) => EmitterLight::None,
         }
@@ -77,29 +93,14 @@ impl EmitterLight {
     /// sample, or a sample of zero or non-finite density).
     #[inline]
     pub fn sample(&self, u: DVec2) -> Option<LightDirection> {
-        let (direction, pdf) = match self {
-            EmitterLight::Sky => {
-                let w = sample_uniform_sphere(u);
-                (w, pdf_uniform_sphere(w))
-            }
-            EmitterLight::Sphere(s) => {
-                let l = s.sample(u);
-                (l.direction, l.pdf)
-            }
-            EmitterLight::Cap(frame, cone) => {
-                (frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle())
-            }
-            EmitterLight::Polygon(p) => {
-                let l = p.sample(u)?;
-                (l.direction, l.pdf)
-            }
-            EmitterLight::Disk(a, r) => {
-                let l = a.sample(r.point, r.normal, u)?;
-                (l.direction, l.pdf)
-            }
-            EmitterLight::None => return None,
-        };
-        (pdf > 0.0 && pdf.is_finite()).then_some(LightDirection { direction, pdf })
+        match self {
+            EmitterLight::Sky => sample_sky(u),
+            EmitterLight::Sphere(s) => sample_sphere(s, u),
+            EmitterLight::Cap(frame, cone) => sample_cap(frame, cone, u),
+            EmitterLight::Polygon(p) => sample_polygon(p, u),
+            EmitterLight::Disk(a, r) => sample_disk(a, r, u),
+            EmitterLight::None => None,
+        }
     }
 
     /// The density per steradian with which [`EmitterLight::sample`]
@@ -115,4 +116,53 @@ impl EmitterLight {
             EmitterLight::None => 0.0,
         }
     }
+}
+
+// One function per kind of [`EmitterLight::sample`], so that a batch loop
+// over one emitter calls its kind's sampler directly (strategy::batch).
+
+/// A direction with density `pdf`, if the density is positive and finite.
+#[inline(always)]
+fn checked(direction: DVec3, pdf: f64) -> Option<LightDirection> {
+    (pdf > 0.0 && pdf.is_finite()).then_some(LightDirection { direction, pdf })
+}
+
+/// [`EmitterLight::sample`] of a sky: the uniform sphere.
+#[inline(always)]
+pub(super) fn sample_sky(u: DVec2) -> Option<LightDirection> {
+    let w = sample_uniform_sphere(u);
+    checked(w, pdf_uniform_sphere(w))
+}
+
+/// [`EmitterLight::sample`] of a sphere: its subtended cone. The direction
+/// and density of [`SphereSolidAngle::sample`] (the cone's direction in its
+/// frame, 1/Ω), without the point on the sphere and its distance, which
+/// irradiance does not need.
+#[inline(always)]
+pub(super) fn sample_sphere(s: &SphereSolidAngle, u: DVec2) -> Option<LightDirection> {
+    let cone = s.cone();
+    checked(
+        s.frame().from_local(cone.sample(u)),
+        1.0 / cone.solid_angle(),
+    )
+}
+
+/// [`EmitterLight::sample`] of a sky cap: its cone, in its frame.
+#[inline(always)]
+pub(super) fn sample_cap(frame: &Frame, cone: &UniformCone, u: DVec2) -> Option<LightDirection> {
+    checked(frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle())
+}
+
+/// [`EmitterLight::sample`] of a polygon: its spherical polygon.
+#[inline(always)]
+pub(super) fn sample_polygon(p: &PolygonSolidAngle, u: DVec2) -> Option<LightDirection> {
+    let l = p.sample(u)?;
+    checked(l.direction, l.pdf)
+}
+
+/// [`EmitterLight::sample`] of a disk: by area, seen from the receiver.
+#[inline(always)]
+pub(super) fn sample_disk(a: &DiskAreaSampler, r: &Receiver, u: DVec2) -> Option<LightDirection> {
+    let l = a.sample(r.point, r.normal, u)?;
+    checked(l.direction, l.pdf)
 }

@@ -1,5 +1,6 @@
-//! One emitter prepared at one receiver: its technique and samplers, and
-//! the one-sample estimate F = L cos θ / p.
+//! One emitter prepared at one receiver: its technique and samplers, the
+//! one-sample estimate F = L cos θ / p, and the bounds of its parts
+//! ([`PartBound`]).
 
 use glam::{DVec2, DVec3};
 use lambert_light::emitter::Emitter;
@@ -10,31 +11,55 @@ use lambert_sampling::f64::{
 };
 use lambert_sampling::sequence::SampleSequence;
 
-use super::{EmitterArea, EmitterLight, Strategy, Technique};
+use super::{EmitterArea, EmitterLight, PartBound, Strategy, Technique};
 
-/// One emitter prepared for estimation at one receiver: its technique and
-/// its samplers.
+/// One emitter prepared for estimation at one receiver: its technique, its
+/// samplers, and the bounds of the one or two parts of its one-sample
+/// estimate.
 #[derive(Clone, Debug)]
 pub struct PreparedEmitter {
     /// The emitter.
     pub emitter: Emitter,
     /// The technique used for it.
     pub technique: Technique,
-    light: EmitterLight,
-    area: EmitterArea,
+    pub(super) light: EmitterLight,
+    pub(super) area: EmitterArea,
+    parts: [PartBound; 2],
 }
+
+/// How many samples of a batch had a non-zero value in each part of an
+/// emitter's estimate (part 1 only for MIS: its light-sampled direction).
+pub type PartHits = [u64; 2];
 
 impl PreparedEmitter {
     /// Prepares `emitter` at `receiver` for `strategy` (resolved for this
     /// emitter).
     pub fn new(emitter: &Emitter, receiver: &Receiver, strategy: Strategy) -> Self {
         let technique = strategy.resolve(emitter);
+        let light = EmitterLight::new(emitter, receiver);
+        let area = EmitterArea::new(emitter, receiver);
+        let [first, second] = PartBound::of(technique, emitter, receiver, &light, &area);
+        let none = PartBound {
+            max: 0.0,
+            shape: super::PartShape::Bounded,
+            hit_probability: 0.0,
+            name: "none",
+        };
         PreparedEmitter {
             emitter: emitter.clone(),
             technique,
-            light: EmitterLight::new(emitter, receiver),
-            area: EmitterArea::new(emitter, receiver),
+            light,
+            area,
+            parts: [first.unwrap_or(none), second.unwrap_or(none)],
         }
+    }
+
+    /// The bounds of the parts of this emitter's one-sample estimate: one
+    /// for every technique but MIS, which has two (its cosine-sampled and
+    /// its light-sampled direction), in the order of
+    /// [`evaluate_batch`](Self::evaluate_batch)'s hit counts.
+    pub fn parts(&self) -> &[PartBound] {
+        &self.parts[..self.technique.dimensions()]
     }
 
     /// One sample of this emitter's irradiance estimate, drawing its
@@ -52,11 +77,22 @@ impl PreparedEmitter {
 
     /// The emitter's radiance when every light sample sees it
     /// ([`EmitterLight::always_hits`]).
-    fn uniform_radiance(&self) -> f64 {
+    pub(super) fn uniform_radiance(&self) -> f64 {
         match &self.emitter {
             Emitter::Sphere(s) => s.radiance,
             Emitter::SkyCap(c) => c.radiance,
             _ => 0.0,
+        }
+    }
+
+    /// L(ω)·max(cos θ, 0) for the unit direction `w` at the receiver.
+    #[inline]
+    fn radiance_cos(&self, receiver: &Receiver, w: DVec3) -> f64 {
+        let cos = w.dot(receiver.normal);
+        if cos > 0.0 {
+            self.emitter.radiance_toward(receiver.point, w) * cos
+        } else {
+            0.0
         }
     }
 
@@ -66,14 +102,7 @@ impl PreparedEmitter {
     pub fn evaluate_u(&self, receiver: &Receiver, u: DVec2, u2: DVec2) -> f64 {
         let p = receiver.point;
         let frame = &receiver.frame;
-        let radiance_cos = |w: DVec3| {
-            let cos = w.dot(receiver.normal);
-            if cos > 0.0 {
-                self.emitter.radiance_toward(p, w) * cos
-            } else {
-                0.0
-            }
-        };
+        let radiance_cos = |w: DVec3| self.radiance_cos(receiver, w);
         match self.technique {
             Technique::UniformHemisphere => {
                 let local = sample_uniform_hemisphere(u);
@@ -101,50 +130,85 @@ impl PreparedEmitter {
                 None => 0.0,
             },
             Technique::Mis(h) => {
-                let mut f = 0.0;
-                let local = sample_cosine_hemisphere(u);
-                let w = frame.from_local(local);
-                let p_cos = pdf_cosine_hemisphere(local);
-                if p_cos > 0.0 {
-                    let p_light = self.light.pdf(w);
-                    f += h.weight(p_cos, p_light) * radiance_cos(w) / p_cos;
-                }
-                if let Some(s) = self.light.sample(u2) {
-                    let local = frame.to_local(s.direction);
-                    let p_cos = pdf_cosine_hemisphere(local);
-                    f += h.weight(s.pdf, p_cos) * radiance_cos(s.direction) / s.pdf;
-                }
-                f
+                let (cosine, light) = self.mis_parts(receiver, h, u, u2);
+                cosine + light
             }
         }
     }
 
+    /// The two parts of an MIS sample: the weighted value of the
+    /// cosine-sampled direction (from `u`) and of the light-sampled one
+    /// (from `u2`); each is 0 when its direction is not drawn or misses.
+    #[inline]
+    fn mis_parts(
+        &self,
+        receiver: &Receiver,
+        h: super::Heuristic,
+        u: DVec2,
+        u2: DVec2,
+    ) -> (f64, f64) {
+        let frame = &receiver.frame;
+        let radiance_cos = |w: DVec3| self.radiance_cos(receiver, w);
+        let mut cosine = 0.0;
+        let local = sample_cosine_hemisphere(u);
+        let w = frame.from_local(local);
+        let p_cos = pdf_cosine_hemisphere(local);
+        if p_cos > 0.0 {
+            let p_light = self.light.pdf(w);
+            cosine = h.weight(p_cos, p_light) * radiance_cos(w) / p_cos;
+        }
+        let mut light = 0.0;
+        if let Some(s) = self.light.sample(u2) {
+            let local = frame.to_local(s.direction);
+            let p_cos = pdf_cosine_hemisphere(local);
+            light = h.weight(s.pdf, p_cos) * radiance_cos(s.direction) / s.pdf;
+        }
+        (cosine, light)
+    }
+
     /// Adds this emitter's estimate for each sample of a chunk to `out`
-    /// (`out[i] += F(u[i], u2[i])`). Light sampling of a cone (spheres,
-    /// sky caps) runs through the slice form of the cone warp, which the
-    /// compiler can vectorise; everything else loops over
-    /// [`evaluate_u`](Self::evaluate_u).
-    pub fn evaluate_batch(&self, receiver: &Receiver, u: &[DVec2], u2: &[DVec2], out: &mut [f64]) {
-        if let (Technique::Light, EmitterLight::Sphere(sphere)) = (self.technique, &self.light) {
-            // pdf is the constant 1/Ω: F = L Ω max(n·ω, 0).
-            let scale = self.uniform_radiance() * sphere.solid_angle();
-            let cone = sphere.cone();
-            let frame = sphere.frame();
-            // Rotate the normal into the cone's frame once: n·ω = n_local·ω_local.
-            let n_local = frame.to_local(receiver.normal);
-            const BLOCK: usize = 256;
-            let mut local = [DVec3::ZERO; BLOCK];
-            for (u_block, out_block) in u.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
-                let local = &mut local[..u_block.len()];
-                cone.sample_batch(u_block, local);
-                for (o, w) in out_block.iter_mut().zip(local.iter()) {
-                    *o += scale * n_local.dot(*w).max(0.0);
+    /// (`out[i] += F(u[i], u2[i])`) and returns, per part
+    /// ([`parts`](Self::parts)), how many samples had a non-zero value
+    /// there (counted in the same pass, without a branch). The points are
+    /// split into coordinate arrays a block at a time and run through
+    /// [`add_batch`](Self::add_batch) (one specialised loop per technique
+    /// and emitter kind); call `add_batch` directly, inside
+    /// [`Isa::run`](lambert_sampling::isa::Isa::run), to use wide vectors.
+    pub fn evaluate_batch(
+        &self,
+        receiver: &Receiver,
+        u: &[DVec2],
+        u2: &[DVec2],
+        out: &mut [f64],
+    ) -> PartHits {
+        const BLOCK: usize = 256;
+        let mut hits = [0u64; 2];
+        let mis = self.technique.dimensions() > 1;
+        let mut c = [[0.0f64; BLOCK]; 4];
+        let n = u
+            .len()
+            .min(out.len())
+            .min(if mis { u2.len() } else { usize::MAX });
+        for start in (0..n).step_by(BLOCK) {
+            let m = BLOCK.min(n - start);
+            let [ux, uy, vx, vy] = &mut c;
+            for k in 0..m {
+                (ux[k], uy[k]) = (u[start + k].x, u[start + k].y);
+                if mis {
+                    (vx[k], vy[k]) = (u2[start + k].x, u2[start + k].y);
                 }
             }
-            return;
+            let h = self.add_batch(
+                receiver,
+                &ux[..m],
+                &uy[..m],
+                &vx[..m],
+                &vy[..m],
+                &mut out[start..start + m],
+            );
+            hits[0] += h[0];
+            hits[1] += h[1];
         }
-        for ((o, &a), &b) in out.iter_mut().zip(u).zip(u2) {
-            *o += self.evaluate_u(receiver, a, b);
-        }
+        hits
     }
 }
