@@ -513,7 +513,11 @@ fn judge_estimate(call: &Call, map: &Map<String, Value>, context: &Context) -> R
         },
     };
     number_if(map, "rel_error", analytic.is_some_and(|a| a != 0.0))?;
-    number_if(map, "z", analytic.is_some() && se > 0.0)?;
+    number_if(
+        map,
+        "z",
+        analytic.is_some() && se > 0.0 && interval == Some("clt"),
+    )?;
     if !(mean >= 0.0) {
         return Err(inconsistent(format!("mean {mean} < 0")));
     }

@@ -99,13 +99,20 @@ macro_rules! sphere_impl {
             /// `point` (see the type's docs); 4π from inside or on it.
             #[inline]
             pub fn solid_angle_from(&self, point: V3) -> Real {
-                let d = (point - self.center).length();
+                let mut d = (point - self.center).length();
+                if d == Real::INFINITY {
+                    // |point − c|² overflowed: the scaled length.
+                    d = self.distance_to_center(point);
+                }
                 let r = self.radius;
                 if !(d > r) {
                     return 4.0 * PI;
                 }
                 let s = r / d;
-                let c = ((d - r) * (d + r)).sqrt() / d;
+                let mut c = ((d - r) * (d + r)).sqrt() / d;
+                if !c.is_finite() {
+                    c = ((1.0 - s) * (1.0 + s)).sqrt();
+                }
                 2.0 * PI * s * s / (1.0 + c)
             }
 

@@ -91,7 +91,13 @@ macro_rules! sphere_light_impl {
                 crate::error::finite3("reference", wide3(reference))?;
                 let (center, radius) = (sphere.center(), sphere.radius());
                 let axis = center - reference;
-                let distance = axis.length();
+                // |axis|² overflows beyond ≈ 1e154 (f64) or 1e19 (f32): the
+                // scaled length then (the same value where both are finite,
+                // so ordinary spheres keep their bits).
+                let mut distance = axis.length();
+                if distance == Real::INFINITY {
+                    distance = sphere.distance_to_center(reference);
+                }
                 if !(distance > radius) {
                     return Err(SamplingError::InsideLight {
                         distance: distance as f64,
@@ -100,7 +106,12 @@ macro_rules! sphere_light_impl {
                 }
                 let sin_theta_max = radius / distance;
                 let sin2_theta_max = sin_theta_max * sin_theta_max;
-                let cos_theta_max = ((distance - radius) * (distance + radius)).sqrt() / distance;
+                let mut cos_theta_max = ((distance - radius) * (distance + radius)).sqrt() / distance;
+                if !cos_theta_max.is_finite() {
+                    // (d − r)(d + r) overflowed: the same cos θmax from
+                    // s = r/d, √((1 − s)(1 + s)).
+                    cos_theta_max = ((1.0 - sin_theta_max) * (1.0 + sin_theta_max)).sqrt();
+                }
                 let cone = UniformCone::from_one_minus_cos(sin2_theta_max / (1.0 + cos_theta_max))?;
                 // Rotating a direction into the cone's frame and back moves it
                 // by up to ~16ε in angle (each frame axis and each dot product

@@ -19,6 +19,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use lambert_estimator::estimation::{estimate, EstimateConfig, EstimateError, EstimateReport};
+use lambert_estimator::interval::IntervalKind;
 use lambert_light::Scene;
 use serde_json::json;
 
@@ -79,13 +80,18 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
         )?),
         _ => None,
     };
+    // z is a normal score only where the interval is the CLT one; with
+    // rare-event or bounded intervals (few or no hits) the standard error
+    // does not describe the error, and z is null (the warning says why).
     let z = match analytic {
-        Some(a) if report.std_error > 0.0 => Some(finite::ratio(
-            "z",
-            "z-score (mean − analytic)/std_error =",
-            report.mean - a,
-            report.std_error,
-        )?),
+        Some(a) if report.std_error > 0.0 && report.interval == IntervalKind::CentralLimit => {
+            Some(finite::ratio(
+                "z",
+                "z-score (mean − analytic)/std_error =",
+                report.mean - a,
+                report.std_error,
+            )?)
+        }
         _ => None,
     };
     if options.json {
