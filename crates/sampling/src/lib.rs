@@ -26,14 +26,20 @@
 pub(crate) mod precision;
 
 pub mod area;
+pub mod carlson;
 pub mod catalog;
 pub mod cone;
 pub mod direction_sample;
 pub mod disk;
+pub mod disk_solid_angle;
 pub mod error;
 pub mod frame;
 pub mod hemisphere;
 pub mod light_sample;
+pub mod projected_cap;
+pub mod projected_polygon;
+pub mod projected_sphere;
+pub mod segment;
 pub mod sequence;
 pub mod sphere;
 pub mod sphere_light;
@@ -49,13 +55,19 @@ pub use sequence::{Independent, SampleSequence, Scramble, Sobol, SobolLayout, St
 /// Every f64 warp and helper (`DVec2`, `DVec3`).
 pub mod f64 {
     pub use crate::area::f64::*;
+    pub use crate::carlson::f64::*;
     pub use crate::cone::f64::*;
     pub use crate::direction_sample::f64::*;
     pub use crate::disk::f64::*;
+    pub use crate::disk_solid_angle::f64::*;
     pub use crate::error::SamplingError;
     pub use crate::frame::f64::*;
     pub use crate::hemisphere::f64::*;
     pub use crate::light_sample::f64::*;
+    pub use crate::projected_cap::f64::*;
+    pub use crate::projected_polygon::f64::*;
+    pub use crate::projected_sphere::f64::*;
+    pub use crate::segment::f64::*;
     pub use crate::sphere::f64::*;
     pub use crate::sphere_light::f64::*;
     pub use crate::spherical::f64::*;
@@ -68,13 +80,19 @@ pub mod f64 {
 /// Every f32 warp and helper (`Vec2`, `Vec3`), for path tracers.
 pub mod f32 {
     pub use crate::area::f32::*;
+    pub use crate::carlson::f32::*;
     pub use crate::cone::f32::*;
     pub use crate::direction_sample::f32::*;
     pub use crate::disk::f32::*;
+    pub use crate::disk_solid_angle::f32::*;
     pub use crate::error::SamplingError;
     pub use crate::frame::f32::*;
     pub use crate::hemisphere::f32::*;
     pub use crate::light_sample::f32::*;
+    pub use crate::projected_cap::f32::*;
+    pub use crate::projected_polygon::f32::*;
+    pub use crate::projected_sphere::f32::*;
+    pub use crate::segment::f32::*;
     pub use crate::sphere::f32::*;
     pub use crate::sphere_light::f32::*;
     pub use crate::spherical::f32::*;
