@@ -56,9 +56,15 @@
 //! log₁₀(θm/Δ) digits (Δ the angular height of the visible sliver), the
 //! conditioning of the problem in the inputs (axis, h).
 //!
-//! Directions within 4ε of the horizon are raised to cos θ = 4ε (a set of
-//! projected measure ~(4ε)², below any test's resolution), so every sample,
-//! including those from u on the square's edge, has a positive density.
+//! Every sample, including those from u on the square's edge, has
+//! cos θ > 0 and so a positive density: u₁ is kept ε/2 off the ends of a
+//! slice that reaches the horizon, and cos θ is never rounded below the
+//! smallest normal number.
+//!
+//! The inverse recovers the ellipse coordinate η from x − x_c =
+//! [h − (1 − w·a) + cos γ (cos θm cos γ − z)]/sin γ, with 1 − w·a = |w − a|²/2,
+//! rather than from x − x_c directly: near the horizon x ≈ 1 carries only
+//! absolute precision, while y and z locate the direction relatively.
 
 macro_rules! projected_cap_impl {
     () => {
@@ -313,7 +319,8 @@ macro_rules! projected_cap_impl {
             /// The cap-frame point (x, y, z) turned back by the axis azimuth.
             #[inline]
             fn turn_back(&self, x: Real, y: Real, z: Real) -> V3 {
-                let z = z.max(4.0 * Real::EPSILON);
+                // Never exactly on the horizon (density 0 there).
+                let z = z.max(Real::MIN_POSITIVE);
                 V3::new(
                     self.cos_az * x - self.sin_az * y,
                     self.sin_az * x + self.cos_az * y,
@@ -389,15 +396,20 @@ macro_rules! projected_cap_impl {
             }
 
             /// Area of the "minus" region up to the slice at height ξ from
-            /// x = 1, and the ellipse's segment height k at ξ (clamped).
+            /// x = 1, and the ellipse's segment height k at ξ (0 where the
+            /// slice misses the ellipse).
             #[inline]
             fn difference_area(&self, xi: Real) -> (Real, Real) {
-                let k = if self.a_x > 0.0 {
-                    ((xi - self.xi_e0) / self.a_x).clamp(0.0, self.k_t)
-                } else {
-                    0.0
-                };
-                (segment_area(xi) - self.a_x * self.a_y * segment_area(k), k)
+                if !(self.a_x > 0.0) {
+                    return (segment_area(xi), 0.0);
+                }
+                let raw = (xi - self.xi_e0) / self.a_x;
+                let k = raw.clamp(0.0, self.k_t);
+                let area = segment_area(xi) - self.a_x * self.a_y * segment_area(k);
+                // The slice crosses the ellipse only for 0 < k < 2 (past its
+                // far tip, when the whole ellipse is removed, it is a full
+                // chord again).
+                (area, if raw > 0.0 && raw < 2.0 { k } else { 0.0 })
             }
 
             /// Height of the rim's plane above the slice at ξ (the gap
@@ -520,9 +532,18 @@ macro_rules! projected_cap_impl {
                 };
                 let total = self.projected_solid_angle;
                 let clamp01 = |v: Real| v.clamp(0.0, 1.0);
+                // x − x_c from the angle to the axis when the cap is near the
+                // horizon point (1, 0, 0) (module docs).
+                let dx = if self.sin_g > 0.5 {
+                    let from_axis = 0.5 * (w - self.axis).length_squared();
+                    (self.one_minus_cos - from_axis + self.cos_g * (self.cos_m * self.cos_g - z))
+                        / self.sin_g
+                } else {
+                    x - self.x_c
+                };
                 match self.region {
                     Region::Ellipse => {
-                        let p = V2::new((x - self.x_c) / self.a_x, y / self.a_y);
+                        let p = V2::new(dx / self.a_x, y / self.a_y);
                         let p = if p.length_squared() > 1.0 {
                             p.normalize()
                         } else {
@@ -541,7 +562,7 @@ macro_rules! projected_cap_impl {
                             };
                             V2::new(clamp01(1.0 - segment_area(xi) / total), clamp01(u1))
                         } else {
-                            let k = (1.0 + (x - self.x_c) / self.a_x).clamp(0.0, self.k_t);
+                            let k = (1.0 + dx / self.a_x).clamp(0.0, self.k_t);
                             let half = (k * (2.0 - k)).max(0.0).sqrt();
                             let u0 = self.a_x * self.a_y * segment_area(k) / total;
                             let u1 = if half > 0.0 {

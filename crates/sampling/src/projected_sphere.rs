@@ -138,8 +138,15 @@ macro_rules! projected_sphere_impl {
             #[inline]
             pub fn sample(&self, u: V2) -> LightSample {
                 let local = self.cap.sample(u).direction;
-                let w = self.frame.from_local(local);
-                let cos_theta = self.frame.z.dot(w);
+                let mut w = self.frame.from_local(local);
+                let mut cos_theta = self.frame.z.dot(w);
+                if !(cos_theta > 0.0) {
+                    // A local cos θ of a few ε turned ≤ 0 by the frame's
+                    // rounding: lift it to ε (a move of ~ε rad, inside the
+                    // rim band).
+                    w = (w + self.frame.z * (Real::EPSILON - cos_theta)).normalize();
+                    cos_theta = self.frame.z.dot(w);
+                }
                 // Angle α from the axis: 1 − cos α = |w − a|²/2.
                 let one_minus_cos = (0.5 * (w - self.axis).length_squared()).min(2.0);
                 let cos_alpha = 1.0 - one_minus_cos;
