@@ -139,3 +139,60 @@ fn invert_undoes_sample() {
         }
     }
 }
+
+/// The iteration counts the samplers' docs state: Newton steps per sample of
+/// a non-central polygon sector and of the disk's sector area, worst over
+/// every hard case on a 64 × 64 grid of u plus the square's edges.
+#[test]
+fn iteration_counts_are_as_documented() {
+    use lambert_sampling::{f32 as s32, f64 as s64};
+    let mut us: Vec<DVec2> = Vec::new();
+    for i in 0..64 {
+        for j in 0..64 {
+            us.push(DVec2::new((i as f64 + 0.5) / 64.0, (j as f64 + 0.5) / 64.0));
+        }
+    }
+    for &a in &edge_values() {
+        for &b in &edge_values() {
+            us.push(DVec2::new(a, b));
+        }
+    }
+    let (mut polygon, mut disk) = ([0usize; 2], [0usize; 2]);
+    for case in cases() {
+        match &case.shape {
+            Shape::Polygon { p, n, vertices } => {
+                let s = s64::ProjectedPolygon::new(*p, *n, vertices).unwrap();
+                let v32: Vec<glam::Vec3> = vertices.iter().map(|v| v.as_vec3()).collect();
+                let t = s32::ProjectedPolygon::new(p.as_vec3(), n.as_vec3(), &v32).ok();
+                for &u in &us {
+                    polygon[0] = polygon[0].max(s.newton_steps(u));
+                    if let Some(t) = &t {
+                        polygon[1] = polygon[1].max(t.newton_steps(u.as_vec2()));
+                    }
+                }
+            }
+            Shape::Disk { p, c, normal, r } => {
+                let s = s64::DiskSolidAngle::new(*p, *c, *normal, *r).unwrap();
+                let t =
+                    s32::DiskSolidAngle::new(p.as_vec3(), c.as_vec3(), normal.as_vec3(), *r as f32)
+                        .ok();
+                for &u in &us {
+                    disk[0] = disk[0].max(s.newton_steps(u));
+                    if let Some(t) = &t {
+                        disk[1] = disk[1].max(t.newton_steps(u.as_vec2()));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    eprintln!(
+        "Newton steps, worst: polygon f64 {} f32 {}; disk f64 {} f32 {}",
+        polygon[0], polygon[1], disk[0], disk[1]
+    );
+    assert!(
+        polygon[0] <= 7 && polygon[1] <= 8,
+        "polygon steps {polygon:?}"
+    );
+    assert!(disk[0] <= 5 && disk[1] <= 4, "disk steps {disk:?}");
+}
