@@ -848,3 +848,67 @@ macro_rules! projected_polygon_impl {
 }
 
 crate::precision::both_precisions!(projected_polygon_impl);
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec2, DVec3, Vec2, Vec3};
+
+    /// Value stability: fixed u → fixed bits of (x, y, z, pdf), in both
+    /// precisions, so that any change to the samples is deliberate. The
+    /// values depend on the platform's libm for sin, cos, atan2, asin and
+    /// cbrt (they were taken with glibc's); regenerate them if a change in
+    /// the algorithm is intended.
+    #[test]
+    fn fixed_u_gives_fixed_bits() {
+        let square = |dx: f64| {
+            [
+                DVec3::new(dx - 0.5, -0.5, 1.0),
+                DVec3::new(dx + 0.5, -0.5, 1.0),
+                DVec3::new(dx + 0.5, 0.5, 1.0),
+                DVec3::new(dx - 0.5, 0.5, 1.0),
+            ]
+        };
+        let cases: [(f64, [u64; 4], [u32; 4]); 2] = [
+            (
+                0.0,
+                [
+                    0x3fd73037febeb5f1,
+                    0xbfcabc5f169a7123,
+                    0x3fed113162f9b375,
+                    0x3ff351cb8ad2b4fc,
+                ],
+                [0x3eb981c2, 0xbe55e2f6, 0x3f68898b, 0x3f9a8e5f],
+            ),
+            (
+                1.0,
+                [
+                    0x3fe743c84fccd06a,
+                    0xbfc451c1bbf46a6b,
+                    0x3fe560540bf0f47e,
+                    0x40042a7ab66a2df1,
+                ],
+                [0x3f3a1e43, 0xbe228e0e, 0x3f2b02a0, 0x402153d6],
+            ),
+        ];
+        for (dx, b64, b32) in cases {
+            let v = square(dx);
+            let s = super::f64::ProjectedPolygon::new(DVec3::ZERO, DVec3::Z, &v)
+                .unwrap()
+                .sample(DVec2::new(0.3, 0.7));
+            let w = s.direction;
+            assert_eq!(
+                [w.x.to_bits(), w.y.to_bits(), w.z.to_bits(), s.pdf.to_bits()],
+                b64
+            );
+            let v32 = v.map(|x| x.as_vec3());
+            let s = super::f32::ProjectedPolygon::new(Vec3::ZERO, Vec3::Z, &v32)
+                .unwrap()
+                .sample(Vec2::new(0.3, 0.7));
+            let w = s.direction;
+            assert_eq!(
+                [w.x.to_bits(), w.y.to_bits(), w.z.to_bits(), s.pdf.to_bits()],
+                b32
+            );
+        }
+    }
+}
