@@ -194,5 +194,5 @@ fn iteration_counts_are_as_documented() {
         polygon[0] <= 7 && polygon[1] <= 8,
         "polygon steps {polygon:?}"
     );
-    assert!(disk[0] <= 5 && disk[1] <= 4, "disk steps {disk:?}");
+    assert!(disk[0] <= 3 && disk[1] <= 2, "disk steps {disk:?}");
 }

@@ -53,11 +53,13 @@
 //! of two nearly equal terms for small ellipses; this one is not. The four
 //! quadrants are mapped from u₀ by reflection (u₀ ∈ [0, ¼) → τ ∈ [0, π/2],
 //! the next quarter mirrored, and so on), continuous across quadrants.
-//! K is concave, so Newton's method from the linear guess (which lies right
-//! of the root) steps left of it once and then increases monotonically; it
-//! stops when a step is ≤ 4ε τ, after at most
-//! [`DiskSolidAngle::MAX_ITERATIONS`] steps (measured: ≤ 5 in f64, ≤ 4 in
-//! f32 over the tests' hard cases), kept inside a bisection bracket.
+//! K is concave and K′ = 1/(1 + c) is within a factor 2 of constant, so
+//! Halley's method (K″ = −c′/(1 + c)² is cheap) from the linear guess
+//! converges in a few steps; a step below √ε is taken without evaluating K
+//! again (its error after the step is ~step³), and the iteration is kept
+//! inside a bisection bracket and stopped after at most
+//! [`DiskSolidAngle::MAX_ITERATIONS`] steps (measured: ≤ 3 in f64, ≤ 2 in
+//! f32 over the tests' hard cases).
 //!
 //! # Disks below the horizon
 //! This sampler does not know the receiver's normal: a disk that crosses
@@ -286,11 +288,33 @@ macro_rules! disk_solid_angle_impl {
                     } else {
                         break;
                     }
-                    let step = f * (1.0 + self.rim_cos(n));
+                    // Halley's step: K′ = 1/(1 + c), K″ = −c′/(1 + c)² with
+                    // c′ = (a² − b²) sin τ cos τ / c.
+                    let c = self.rim_cos(n);
+                    let slope = 1.0 / (1.0 + c);
+                    let curvature = if c > 0.0 {
+                        -self.ecc * n * m / c * slope * slope
+                    } else {
+                        0.0
+                    };
+                    let denominator = 2.0 * slope * slope - f * curvature;
+                    let step = if denominator > 0.0 {
+                        2.0 * f * slope / denominator
+                    } else {
+                        f / slope
+                    };
                     if step.abs() <= 4.0 * Real::EPSILON * tau {
                         break;
                     }
                     let next = tau - step;
+                    if next > lo && next < hi && step.abs() <= Real::EPSILON.sqrt() {
+                        // A step this small leaves an error of about step³
+                        // (cubic convergence), below ε: take it without
+                        // evaluating K again.
+                        tau = next;
+                        (n, m) = tau.sin_cos();
+                        break;
+                    }
                     let next = if next > lo && next < hi {
                         next
                     } else {
@@ -476,7 +500,7 @@ mod tests {
         assert_eq!(
             [w.x.to_bits(), w.y.to_bits(), w.z.to_bits(), s.pdf.to_bits()],
             [
-                0x3fd6e4a0bd1363d8,
+                0x3fd6e4a0bd1363d6,
                 0x3fcfdfee7250e6ea,
                 0x3fecccf6b6e4468b,
                 0x402a62cf93edabd2
