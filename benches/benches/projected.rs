@@ -3,7 +3,10 @@
 //! it replaces, in f32 and f64, RNG included (as in `warps`): uniform cone
 //! vs projected cap; sphere solid angle vs projected sphere; spherical
 //! triangle and rectangle vs projected polygon; disk area vs disk solid
-//! angle. Group `projected` samples from a prepared sampler; group
+//! angle; and, next to the projected polygon, a prototype of Arvo's 2001
+//! method (`lambert_benches::arvo`), the alternative to Peters' that the
+//! sampling crate measured and did not choose. Group `projected` samples
+//! from a prepared sampler; group
 //! `projected-setup` times preparing one sampler for a shading point, which
 //! a path tracer pays once per light per shading point.
 //!
@@ -13,6 +16,7 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{DVec3, Vec3};
+use lambert_benches::arvo::Arvo;
 use lambert_benches::{config, next_u32x2, next_u64x2, rng, BATCH};
 use lambert_sampling::{f32 as s32, f64 as s64};
 
@@ -72,6 +76,16 @@ fn scenes() -> Scenes {
 
 fn narrow<const N: usize>(v: [DVec3; N]) -> [Vec3; N] {
     v.map(|x| x.as_vec3())
+}
+
+/// The vertices counter-clockwise seen from the origin looking out (the
+/// order the Arvo prototype's fan needs).
+fn ccw(v: &[DVec3]) -> Vec<DVec3> {
+    let mut v = v.to_vec();
+    if (v[1] - v[0]).cross(v[2] - v[0]).dot(v[0]) < 0.0 {
+        v.reverse();
+    }
+    v
 }
 
 fn sampling(c: &mut Criterion) {
@@ -170,6 +184,24 @@ fn sampling(c: &mut Criterion) {
         "projected rectangle (central)",
         |u| prect32.sample(u).direction,
         prect64.sample(u).direction
+    );
+    // Arvo's method (2001), the alternative the sampling crate did not
+    // choose: a prototype in f64 (`lambert_benches::arvo`).
+    let arvo_triangle = Arvo::new(&ccw(&s.triangle));
+    bench_warp!(
+        g,
+        "arvo 2001 prototype, triangle f64",
+        next_u64x2,
+        DVec3::ZERO,
+        |u| arvo_triangle.sample(u).0
+    );
+    let arvo_square = Arvo::new(&ccw(&s.offset_square));
+    bench_warp!(
+        g,
+        "arvo 2001 prototype, square (non-central) f64",
+        next_u64x2,
+        DVec3::ZERO,
+        |u| arvo_square.sample(u).0
     );
     let poff64 = s64::ProjectedPolygon::new(DVec3::ZERO, DVec3::Z, &s.offset_square).unwrap();
     let poff32 = s32::ProjectedPolygon::new(Vec3::ZERO, Vec3::Z, &narrow(s.offset_square)).unwrap();

@@ -1,8 +1,12 @@
 //! Zero variance of projected-solid-angle sampling for unoccluded uniform
 //! lights: every sample's estimate cos θ/p must equal the closed-form
 //! projected solid angle Ω⊥ (the estimator crate's independent
-//! implementations: `sphere_irradiance`, `sky_cap_irradiance`) to 1e-12
-//! relative in f64, across the hard cases, and to a stated bound in f32.
+//! implementations: `cap_projected_solid_angle`, `sphere_irradiance`,
+//! `sky_cap_irradiance`, `polygon_irradiance`) to 1e-12 relative in f64,
+//! across the hard cases, and to a stated bound in f32; where the inputs
+//! themselves leave the answer uncertain (a world-space direction to a tiny
+//! sphere straddling the horizon; Lambert's formula for a far polygon), the
+//! tolerance says so. Disks: the solid angle against a quadrature.
 
 use glam::{DVec2, DVec3};
 use lambert_estimator::analytic::{
@@ -376,9 +380,11 @@ fn polygon_every_sample_is_the_closed_form_f64() {
 /// Polygons, f32: Ω⊥ against the f64 sampler on the same (f32-rounded)
 /// inputs — the f32 rounding of the vertices changes a small or distant
 /// polygon's shape itself, which no f32 algorithm can undo — to 64 ε₃₂
-/// (measured: ≤ 2 ε₃₂, also for the 1e-6 rad polygon and the one 1e6 away,
-/// whose areas come from exact edge vectors); every sample's n·ω/p is the
-/// f32 sampler's Ω⊥ to 4 ε₃₂.
+/// (measured: ≤ 3 ε₃₂, also for the 1e-6 rad polygon and the one 1e6 away,
+/// whose areas come from exact edge vectors; 46 ε₃₂ for the sliver and
+/// 23 ε₃₂ for the grazing triangle, whose sectors are thin, so the diagonals'
+/// cross product loses about log₁₀ of their aspect ratio); every sample's
+/// n·ω/p is the f32 sampler's Ω⊥ to 4 ε₃₂.
 #[test]
 fn polygon_every_sample_is_the_closed_form_f32() {
     let mut worst: f64 = 0.0;
@@ -395,6 +401,10 @@ fn polygon_every_sample_is_the_closed_form_f32() {
         let omega = sampler.projected_solid_angle() as f64;
         let rel =
             (omega - reference.projected_solid_angle()).abs() / reference.projected_solid_angle();
+        eprintln!(
+            "{:>40}: f32 Ω⊥ vs f64 on the same inputs {rel:.1e}",
+            case.label
+        );
         worst = worst.max(rel);
         assert!(
             rel <= 64.0 * f32::EPSILON as f64,

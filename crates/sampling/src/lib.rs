@@ -10,6 +10,15 @@
 //! and its inverse (`invert_*` / `invert`). Each states the measure of its
 //! density (per steradian or per square metre), its formula and its source.
 //!
+//! Beyond uniform solid-angle sampling of lights, the crate offers
+//! projected-solid-angle (cosine-weighted) sampling of spherical caps and
+//! sphere lights ([`ProjectedCap`], [`ProjectedSphere`]; Ureña & Georgiev
+//! 2018) and of convex polygons clipped to the receiver's hemisphere
+//! ([`ProjectedPolygon`]; Peters 2021): for an unoccluded uniform light
+//! every sample's estimate L cos θ/p is the irradiance itself. Disks are
+//! sampled uniformly in solid angle by [`DiskSolidAngle`] (Guillén et al.
+//! 2017).
+//!
 //! The f64 warps are in [`f64`](mod@f64) (also re-exported at the crate root); the
 //! f32 ones, for path tracers, in [`f32`](mod@f32). Conventions (DESIGN.md): the local
 //! frame has +z as the normal, θ measured from +z, φ from +x; `u ∈ [0, 1)²`,
