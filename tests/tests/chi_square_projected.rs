@@ -130,6 +130,12 @@ fn every_sampler_has_its_density_on_every_case() {
     assert!(failures.is_empty(), "failures:\n{}", failures.join("\n"));
 }
 
+/// A negative control's outcome: printed, and asserted to be a rejection.
+fn must_reject(what: &str, outcome: &ChiSquareOutcome) {
+    eprintln!("{what}: {outcome}");
+    assert!(!outcome.passed(), "{what}: not rejected");
+}
+
 fn find(label: &str) -> Case {
     cases()
         .into_iter()
@@ -155,11 +161,7 @@ fn rejects_a_density_off_by_one_percent() {
             |u| warp.sample(u).direction,
             |w| 1.01 * pdf(w),
         );
-        eprintln!("{label}, pdf × 1.01: {outcome}");
-        assert!(
-            !outcome.passed(),
-            "{label}: a density 1 % off was not rejected"
-        );
+        must_reject(&format!("{label}, pdf × 1.01"), &outcome);
     }
 }
 
@@ -185,8 +187,7 @@ fn rejects_a_two_percent_skew() {
             |u| warp.sample(DVec2::new(u.x.powf(0.98), u.y)).direction,
             pdf,
         );
-        eprintln!("{label}, u₀^0.98: {outcome}");
-        assert!(!outcome.passed(), "{label}: a 2 % skew was not rejected");
+        must_reject(&format!("{label}, u₀^0.98"), &outcome);
     }
 }
 
@@ -212,8 +213,7 @@ fn rejects_uniform_solid_angle_samples_judged_as_cosine_weighted() {
         |u| frame.from_local(cone.sample(u)),
         reference_density(&case.shape),
     );
-    eprintln!("uniform cone judged as projected cap: {outcome}");
-    assert!(!outcome.passed(), "uniform cone passed as cosine-weighted");
+    must_reject("uniform cone judged as projected cap", &outcome);
     // A sphere tilted 1 rad from the receiver's normal: uniform in its cone.
     let case = find("sphere tilted 1 rad");
     let Shape::Sphere { p, c, r, .. } = case.shape else {
@@ -227,11 +227,7 @@ fn rejects_uniform_solid_angle_samples_judged_as_cosine_weighted() {
         |u| sphere.sample(u).direction,
         reference_density(&case.shape),
     );
-    eprintln!("sphere solid angle judged as projected: {outcome}");
-    assert!(
-        !outcome.passed(),
-        "solid-angle sphere sampling passed as cosine-weighted"
-    );
+    must_reject("sphere solid angle judged as projected", &outcome);
     // A triangle: Arvo's uniform spherical triangle.
     let case = find("triangle tilted receiver");
     let Shape::Polygon {
@@ -248,11 +244,7 @@ fn rejects_uniform_solid_angle_samples_judged_as_cosine_weighted() {
         |u| tri.sample(u).direction,
         reference_density(&case.shape),
     );
-    eprintln!("spherical triangle judged as projected: {outcome}");
-    assert!(
-        !outcome.passed(),
-        "uniform spherical triangle passed as cosine-weighted"
-    );
+    must_reject("spherical triangle judged as projected", &outcome);
 }
 
 /// Negative control 3 (disks): area sampling, whose directions are not
@@ -272,9 +264,5 @@ fn rejects_area_sampled_disk_judged_as_uniform_solid_angle() {
         |u| (area.sample(u).point - p).normalize(),
         reference_density(&case.shape),
     );
-    eprintln!("disk area sampling judged as solid angle: {outcome}");
-    assert!(
-        !outcome.passed(),
-        "area sampling passed as uniform in solid angle"
-    );
+    must_reject("disk area sampling judged as solid angle", &outcome);
 }

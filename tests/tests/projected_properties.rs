@@ -196,3 +196,113 @@ fn iteration_counts_are_as_documented() {
     );
     assert!(disk[0] <= 3 && disk[1] <= 2, "disk steps {disk:?}");
 }
+
+/// Bad input is a clear error naming the field (or what is degenerate),
+/// never a panic; a NaN direction has density 0, not NaN.
+#[test]
+fn bad_input_is_a_clear_error() {
+    use glam::DVec3;
+    use lambert_sampling::f64::{DiskSolidAngle, ProjectedCap, ProjectedPolygon, ProjectedSphere};
+    use lambert_sampling::SamplingError;
+    let nan = DVec3::new(f64::NAN, 0.0, 1.0);
+    let (o, z) = (DVec3::ZERO, DVec3::Z);
+    let field = |e: SamplingError| match e {
+        SamplingError::NotFinite { field, .. }
+        | SamplingError::OutOfRange { field, .. }
+        | SamplingError::ZeroVector { field } => field.to_string(),
+        SamplingError::Degenerate { what } => what.to_string(),
+        SamplingError::InsideLight { .. } => "inside".to_string(),
+    };
+    // Caps.
+    assert_eq!(field(ProjectedCap::new(nan, 0.1).unwrap_err()), "axis");
+    assert_eq!(
+        field(ProjectedCap::new(DVec3::ZERO, 0.1).unwrap_err()),
+        "axis"
+    );
+    assert_eq!(
+        field(ProjectedCap::new(z, 0.0).unwrap_err()),
+        "one_minus_cos_theta_max"
+    );
+    assert_eq!(
+        field(ProjectedCap::new(z, 2.5).unwrap_err()),
+        "one_minus_cos_theta_max"
+    );
+    assert_eq!(
+        field(ProjectedCap::new(z, f64::NAN).unwrap_err()),
+        "one_minus_cos_theta_max"
+    );
+    assert!(field(ProjectedCap::new(-z, 0.1).unwrap_err()).contains("below the receiver's horizon"));
+    // Spheres.
+    let c = DVec3::new(0.0, 0.0, 3.0);
+    assert_eq!(
+        field(ProjectedSphere::new(nan, z, c, 1.0).unwrap_err()),
+        "reference"
+    );
+    assert_eq!(
+        field(ProjectedSphere::new(o, DVec3::ZERO, c, 1.0).unwrap_err()),
+        "normal"
+    );
+    assert_eq!(
+        field(ProjectedSphere::new(o, z, c, -1.0).unwrap_err()),
+        "radius"
+    );
+    assert_eq!(
+        field(ProjectedSphere::new(o, z, c, 3.0).unwrap_err()),
+        "inside"
+    );
+    assert!(field(ProjectedSphere::new(o, z, -c, 1.0).unwrap_err()).contains("below"));
+    // Polygons.
+    let tri = [
+        DVec3::new(0.0, 0.0, 1.0),
+        DVec3::new(1.0, 0.0, 1.0),
+        DVec3::new(0.0, 1.0, 1.0),
+    ];
+    assert_eq!(
+        field(ProjectedPolygon::new(o, z, &tri[..2]).unwrap_err()),
+        "vertices.len()"
+    );
+    assert_eq!(
+        field(ProjectedPolygon::new(o, z, &[tri[0]; 9]).unwrap_err()),
+        "vertices.len()"
+    );
+    assert_eq!(
+        field(ProjectedPolygon::new(o, z, &[tri[0], nan, tri[2]]).unwrap_err()),
+        "vertices"
+    );
+    assert_eq!(
+        field(ProjectedPolygon::new(o, DVec3::ZERO, &tri).unwrap_err()),
+        "normal"
+    );
+    assert!(field(ProjectedPolygon::new(o, -z, &tri).unwrap_err()).contains("below"));
+    let edge_on = [
+        DVec3::new(1.0, 0.0, 0.5),
+        DVec3::new(2.0, 0.0, 1.0),
+        DVec3::new(3.0, 0.0, 1.5),
+    ];
+    assert!(field(ProjectedPolygon::new(o, z, &edge_on).unwrap_err()).contains("edge-on"));
+    let at_reference = [o, DVec3::new(1.0, 0.0, 1.0), DVec3::new(0.0, 1.0, 1.0)];
+    assert!(ProjectedPolygon::new(o, z, &at_reference).is_err());
+    // Disks.
+    assert_eq!(
+        field(DiskSolidAngle::new(o, nan, z, 1.0).unwrap_err()),
+        "center"
+    );
+    assert_eq!(
+        field(DiskSolidAngle::new(o, c, DVec3::ZERO, 1.0).unwrap_err()),
+        "normal"
+    );
+    assert_eq!(
+        field(DiskSolidAngle::new(o, c, z, 0.0).unwrap_err()),
+        "radius"
+    );
+    let in_plane = DVec3::new(3.0, 0.0, 0.0);
+    assert!(field(DiskSolidAngle::new(o, in_plane, z, 1.0).unwrap_err()).contains("edge-on"));
+    // A NaN direction has density 0 everywhere.
+    let cap = ProjectedCap::new(z, 0.1).unwrap();
+    let sphere = ProjectedSphere::new(o, z, c, 1.0).unwrap();
+    let poly = ProjectedPolygon::new(o, z, &tri).unwrap();
+    let disk = DiskSolidAngle::new(o, c, z, 1.0).unwrap();
+    for pdf in [cap.pdf(nan), sphere.pdf(nan), poly.pdf(nan), disk.pdf(nan)] {
+        assert_eq!(pdf, 0.0);
+    }
+}

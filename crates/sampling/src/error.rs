@@ -86,3 +86,26 @@ pub(crate) fn finite3(field: &'static str, v: [f64; 3]) -> Result<(), SamplingEr
     }
     Ok(())
 }
+
+/// Checks that a scalar parameter is finite and positive.
+pub(crate) fn positive(field: &'static str, value: f64) -> Result<(), SamplingError> {
+    finite(field, value)?;
+    if value > 0.0 {
+        Ok(())
+    } else {
+        Err(SamplingError::OutOfRange {
+            field,
+            value,
+            range: "(0, ∞)",
+        })
+    }
+}
+
+/// Checks that a vector parameter, of the given length, has a direction.
+pub(crate) fn nonzero(field: &'static str, length: f64) -> Result<(), SamplingError> {
+    if length > 0.0 && length.is_finite() {
+        Ok(())
+    } else {
+        Err(SamplingError::ZeroVector { field })
+    }
+}

@@ -162,9 +162,7 @@ macro_rules! projected_cap_impl {
                     });
                 }
                 let len = axis.length();
-                if !(len > 0.0) || !len.is_finite() {
-                    return Err(SamplingError::ZeroVector { field: "axis" });
-                }
+                crate::error::nonzero("axis", len as f64)?;
                 let a = axis / len;
                 let sin_g = (a.x * a.x + a.y * a.y).sqrt().min(1.0);
                 let cos_g = a.z.clamp(-1.0, 1.0);

@@ -238,9 +238,7 @@ macro_rules! projected_polygon_impl {
                     });
                 }
                 let n_len = normal.length();
-                if !(n_len > 0.0) || !n_len.is_finite() {
-                    return Err(SamplingError::ZeroVector { field: "normal" });
-                }
+                crate::error::nonzero("normal", n_len as f64)?;
                 let frame = Frame::from_normal(normal / n_len);
                 let base = frame.to_local(vertices[0] - reference);
                 // Clip at z ≥ 0, keeping offsets from vertex 0 exact.

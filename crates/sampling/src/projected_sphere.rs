@@ -68,18 +68,9 @@ macro_rules! projected_sphere_impl {
                 crate::error::finite3("reference", widen(reference))?;
                 crate::error::finite3("normal", widen(normal))?;
                 crate::error::finite3("center", widen(center))?;
-                crate::error::finite("radius", radius as f64)?;
-                if !(radius > 0.0) {
-                    return Err(SamplingError::OutOfRange {
-                        field: "radius",
-                        value: radius as f64,
-                        range: "(0, ∞)",
-                    });
-                }
+                crate::error::positive("radius", radius as f64)?;
                 let n_len = normal.length();
-                if !(n_len > 0.0) || !n_len.is_finite() {
-                    return Err(SamplingError::ZeroVector { field: "normal" });
-                }
+                crate::error::nonzero("normal", n_len as f64)?;
                 let to_center = center - reference;
                 let distance = to_center.length();
                 if !(distance > radius) || !distance.is_finite() {
