@@ -471,3 +471,64 @@ fn disk_solid_angle_is_the_quadrature() {
         }
     }
 }
+
+/// f32, world space: every sample's n·ω/p is the f32 sampler's Ω⊥ to 4 ε₃₂
+/// (the density is formed from that n·ω), and Ω⊥ is the f64 sampler's on
+/// the same (rounded) inputs to 64 ε₃₂ times the axis conditioning of
+/// `sphere_every_sample_is_the_closed_form_f64` (the f32 frame turns the
+/// axis with its own rounding), where f32 resolves the sphere.
+#[test]
+fn sphere_every_sample_is_the_closed_form_f32() {
+    let eps = f32::EPSILON as f64;
+    let mut worst: f64 = 0.0;
+    for case in sphere_cases() {
+        for (normal, rotation) in frames() {
+            let p = DVec3::new(0.25, -0.5, 1.0);
+            let center = p + rotation * case.center;
+            let (p32, n32, c32, r32) = (
+                p.as_vec3(),
+                normal.as_vec3(),
+                center.as_vec3(),
+                case.radius as f32,
+            );
+            let Ok(sampler) = s32::ProjectedSphere::new(p32, n32, c32, r32) else {
+                continue; // rounded into the sphere or below the horizon in f32
+            };
+            let omega = sampler.projected_solid_angle();
+            let nn = sampler.frame().z;
+            for u in us() {
+                let l = sampler.sample(u.as_vec2());
+                assert!(
+                    l.pdf > 0.0 && l.direction.is_finite(),
+                    "{} u={u}",
+                    case.label
+                );
+                let rel = ((nn.dot(l.direction) / l.pdf - omega) / omega).abs() as f64;
+                assert!(rel <= 4.0 * eps, "{} u={u}: {rel:e}", case.label);
+            }
+            if case.radius / (center - p).length() < 1e-3 {
+                continue;
+            }
+            let same = s64::ProjectedSphere::new(
+                p32.as_dvec3(),
+                n32.as_dvec3(),
+                c32.as_dvec3(),
+                r32 as f64,
+            )
+            .unwrap();
+            let h = same.cap().one_minus_cos_theta_max();
+            let kappa = axis_condition(same.cap().axis().z, h);
+            let rel =
+                (omega as f64 - same.projected_solid_angle()).abs() / same.projected_solid_angle();
+            let tol = 64.0 * eps * (1.0 + kappa);
+            worst = worst.max(rel / tol);
+            assert!(
+                rel <= tol,
+                "{}: f32 Ω⊥ {omega} vs f64 {} ({rel:e} > {tol:e})",
+                case.label,
+                same.projected_solid_angle()
+            );
+        }
+    }
+    eprintln!("f32 spheres: Ω⊥ vs f64 on the same inputs, worst {worst:.2} of its tolerance");
+}
