@@ -491,6 +491,33 @@ mod tests {
         }
     }
 
+    /// Points lie on the disk, along the direction at the reported
+    /// distance, for a tilted disk and one seen from close under its rim.
+    #[test]
+    fn points_lie_on_the_disk_at_the_reported_distance() {
+        use super::f64::DiskSolidAngle;
+        let p = DVec3::new(0.2, -0.1, 0.3);
+        for (c, n, r) in [
+            (DVec3::new(1.0, 0.5, 2.0), DVec3::new(0.3, -1.0, 0.4), 0.7),
+            (DVec3::new(1.2, -0.1, 0.31), DVec3::Z, 1.0),
+        ] {
+            let d = DiskSolidAngle::new(p, c, n, r).unwrap();
+            let n = n.normalize();
+            for i in 0..=16 {
+                for j in 0..=16 {
+                    let u = DVec2::new(i as f64 / 16.0, j as f64 / 16.0);
+                    let l = d.sample(u);
+                    assert!(n.dot(l.point - c).abs() < 1e-14, "{u}");
+                    assert!((l.point - c).length() <= r * (1.0 + 1e-12), "{u}");
+                    assert!(
+                        (p + l.direction * l.distance - l.point).length() < 1e-13,
+                        "{u}"
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn fixed_u_gives_fixed_bits() {
         let (c, n, r) = (DVec3::new(1.0, 0.5, 2.0), DVec3::new(0.3, -1.0, 0.4), 0.7);

@@ -174,6 +174,11 @@ macro_rules! projected_polygon_impl {
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct ProjectedPolygon {
             frame: Frame,
+            /// The reference point, and the polygon's plane: unit normal and
+            /// signed distance from the reference point.
+            reference: V3,
+            plane_normal: V3,
+            plane_offset: Real,
             count: usize,
             /// Clipped vertices (local frame): offsets from vertex 0,
             /// positions, lengths, unit directions; unit inward edge normals.
@@ -306,8 +311,19 @@ macro_rules! projected_polygon_impl {
                     let m = position[i].cross(offset[j] - offset[i]);
                     edge_normal[i] = m.normalize_or_zero();
                 }
+                // The plane, from the input vertices (Newell's normal of the
+                // exact edge vectors), for the hit point and distance.
+                let mut area = V3::ZERO;
+                for i in 1..k - 1 {
+                    area += (vertices[i] - vertices[0]).cross(vertices[i + 1] - vertices[0]);
+                }
+                let plane_normal = area.normalize_or_zero();
+                let plane_offset = plane_normal.dot(vertices[0] - reference);
                 let mut poly = ProjectedPolygon {
                     frame,
+                    reference,
+                    plane_normal,
+                    plane_offset,
                     count,
                     offset,
                     position,
@@ -816,13 +832,16 @@ macro_rules! projected_polygon_impl {
             /// u ∈ [0, 1]² gives a finite unit vector for which
             /// [`ProjectedPolygon::pdf`] returns the same density.
             #[inline]
-            pub fn sample(&self, u: V2) -> DirectionSample {
+            pub fn sample(&self, u: V2) -> LightSample {
                 let (mut l, _) = self.sample_local(u);
                 l.z = l.z.max(4.0 * Real::EPSILON);
                 let w = self.frame.from_local(l);
-                DirectionSample {
+                let distance = self.plane_offset / self.plane_normal.dot(w);
+                LightSample {
                     direction: w,
                     pdf: self.pdf_of(self.frame.z.dot(w)),
+                    point: self.reference + w * distance,
+                    distance,
                 }
             }
 
@@ -935,6 +954,39 @@ mod tests {
     /// values depend on the platform's libm for sin, cos, atan2, asin and
     /// cbrt (they were taken with glibc's); regenerate them if a change in
     /// the algorithm is intended.
+    /// Sampled points lie in the polygon's plane, inside it, along the
+    /// direction at the reported distance.
+    #[test]
+    fn points_lie_on_the_polygon_at_the_reported_distance() {
+        let p = DVec3::new(0.1, -0.2, 0.3);
+        // A parallelogram (planar by construction).
+        let (a, b, c) = (
+            DVec3::new(1.0, 0.0, 2.0),
+            DVec3::new(2.0, 0.5, 2.5),
+            DVec3::new(1.5, 1.5, 2.0),
+        );
+        let v = [a, b, c, a + c - b];
+        let poly = super::f64::ProjectedPolygon::new(p, DVec3::new(0.2, 0.1, 1.0), &v).unwrap();
+        let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
+        for i in 0..16 {
+            for j in 0..16 {
+                let u = DVec2::new((i as f64 + 0.5) / 16.0, (j as f64 + 0.5) / 16.0);
+                let l = poly.sample(u);
+                // A few ulps of the scene's size (≈ 3).
+                assert!(n.dot(l.point - v[0]).abs() < 1e-14, "{u}");
+                assert!(
+                    (p + l.direction * l.distance - l.point).length() < 1e-14,
+                    "{u}"
+                );
+                // Inside: on the inner side of every edge.
+                for k in 0..4 {
+                    let (a, b) = (v[k], v[(k + 1) % 4]);
+                    assert!((b - a).cross(l.point - a).dot(n) > -1e-14, "{u}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn fixed_u_gives_fixed_bits() {
         let square = |dx: f64| {

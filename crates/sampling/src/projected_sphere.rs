@@ -204,6 +204,33 @@ mod tests {
     /// values depend on the platform's libm for sin, cos, atan2, asin and
     /// cbrt (they were taken with glibc's); regenerate them if a change in
     /// the algorithm is intended.
+    /// Points lie on the sphere's near side, along the direction at the
+    /// reported distance (as for `SphereSolidAngle`), above the horizon.
+    #[test]
+    fn points_lie_on_the_near_side_at_the_reported_distance() {
+        let (p, n) = (
+            DVec3::new(0.5, -0.2, 0.1),
+            DVec3::new(0.1, 0.3, 1.0).normalize(),
+        );
+        for center in [DVec3::new(3.0, -1.0, 8.0), DVec3::new(4.0, 1.0, 0.3)] {
+            let s = super::f64::ProjectedSphere::new(p, n, center, 1.5).unwrap();
+            for i in 0..=16 {
+                for j in 0..=16 {
+                    let u = DVec2::new(i as f64 / 16.0, j as f64 / 16.0);
+                    let l = s.sample(u);
+                    // A few ulps of the scene's size (≈ 10).
+                    assert!(((l.point - center).length() - 1.5).abs() < 1e-13, "{u}");
+                    assert!(
+                        (p + l.direction * l.distance - l.point).length() < 1e-12,
+                        "{u}"
+                    );
+                    assert!((l.point - center).dot(p - l.point) >= -1e-12, "{u}");
+                    assert!(n.dot(l.direction) > 0.0, "{u}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn fixed_u_gives_fixed_bits() {
         let (p, n, c, r) = (
