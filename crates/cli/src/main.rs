@@ -29,6 +29,9 @@ enum Command {
     Estimate(commands::estimate::EstimateOptions),
     /// The closed-form irradiance of a scene.
     Analytic(commands::analytic::AnalyticOptions),
+    /// Render a scene: ray casting, Whitted ray tracing or an irradiance
+    /// image with occlusion, as OpenEXR with a PNG preview.
+    Render(commands::render::RenderOptions),
     /// Write N unit directions drawn by one warp (for external checkers).
     Sample {
         #[command(subcommand)]
@@ -47,6 +50,7 @@ fn main() -> ExitCode {
         Some(Command::Validate(options)) => commands::validate::run(&options),
         Some(Command::Estimate(options)) => commands::estimate::run(&options).map(|()| true),
         Some(Command::Analytic(options)) => commands::analytic::run(&options).map(|()| true),
+        Some(Command::Render(options)) => commands::render::run(&options).map(|()| true),
         Some(Command::Study(options)) => commands::study::run(&options).map(|()| true),
         Some(Command::Merge(options)) => commands::merge::run(&options).map(|()| true),
         None => commands::study::run(&commands::study::StudyOptions::default()).map(|()| true),

@@ -35,6 +35,23 @@ pub fn vec3_list(field: &str, text: &str, count: usize) -> Result<Vec<DVec3>, St
     items.iter().map(|item| vec3(field, item)).collect()
 }
 
+/// Parses `--strategy` and `--sequence` (errors name the option).
+pub fn strategy_and_sequence(
+    strategy: &str,
+    sequence: &str,
+) -> Result<
+    (
+        lambert_estimator::strategy::Strategy,
+        lambert_estimator::estimation::SequenceKind,
+    ),
+    String,
+> {
+    Ok((
+        strategy.parse().map_err(|e| format!("--strategy: {e}"))?,
+        sequence.parse().map_err(|e| format!("--sequence: {e}"))?,
+    ))
+}
+
 /// Parses a finite number, naming `field` in the error.
 pub fn finite(field: &str, value: f64) -> Result<f64, String> {
     if value.is_finite() {

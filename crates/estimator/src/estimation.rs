@@ -176,7 +176,7 @@ pub fn sample_scene<S: SampleSequence>(
         .sum()
 }
 
-fn mix(seed: u64, k: u64) -> u64 {
+pub(crate) fn mix(seed: u64, k: u64) -> u64 {
     // SplitMix64 finaliser of seed + k·golden: independent replicate seeds.
     let mut z = seed.wrapping_add(k.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);

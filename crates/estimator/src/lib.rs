@@ -2,12 +2,14 @@
 //!
 //! Monte Carlo estimation of irradiance E = ∫ L cos θ dω at a receiver:
 //! estimation strategies ([`strategy`]), deterministic parallel runs over
-//! any sample sequence ([`estimation`]) and streaming statistics with honest
-//! standard errors ([`statistics`]). Scenes, emitters and closed forms come
+//! any sample sequence ([`estimation`]), estimates at one point of a scene
+//! with occluders through a visibility callback ([`point`]), and streaming
+//! statistics with honest standard errors ([`statistics`]). Scenes, emitters and closed forms come
 //! from `lambert-light`; warps and sequences from `lambert-sampling`.
 
 pub mod clt;
 pub mod estimation;
+pub mod point;
 pub mod statistics;
 pub mod strategy;
 

@@ -6,10 +6,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use lambert_estimator::estimation::{
-    estimate, EstimateConfig, EstimateError, EstimateReport, SequenceKind,
-};
-use lambert_estimator::strategy::Strategy;
+use lambert_estimator::estimation::{estimate, EstimateConfig, EstimateError, EstimateReport};
 use lambert_light::Scene;
 use serde_json::json;
 
@@ -43,14 +40,8 @@ pub struct EstimateOptions {
 
 /// Runs the command.
 pub fn run(options: &EstimateOptions) -> Result<(), String> {
-    let strategy: Strategy = options
-        .strategy
-        .parse()
-        .map_err(|e| format!("--strategy: {e}"))?;
-    let sequence: SequenceKind = options
-        .sequence
-        .parse()
-        .map_err(|e| format!("--sequence: {e}"))?;
+    let (strategy, sequence) =
+        crate::parse::strategy_and_sequence(&options.strategy, &options.sequence)?;
     let scene =
         Scene::load(&options.scene).map_err(|e| format!("{}: {e}", options.scene.display()))?;
     let config = EstimateConfig {

@@ -21,10 +21,12 @@
 
 mod emitter_area;
 mod emitter_light;
+mod occluded;
 mod prepared;
 
 pub use emitter_area::EmitterArea;
 pub use emitter_light::{EmitterLight, LightDirection};
+pub use occluded::{delta_irradiance_visible, OccludedEmitter};
 pub use prepared::PreparedEmitter;
 
 use std::fmt;

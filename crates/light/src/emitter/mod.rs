@@ -5,6 +5,7 @@
 //! emitters' irradiances, E = Σₖ ∫ Lₖ(ω) cos θ dω + Σ_delta Eₖ. One-sided
 //! emitters (disks, polygons) are dark seen from behind.
 
+mod arrival;
 mod directional;
 mod disk;
 mod error;
@@ -14,6 +15,7 @@ mod sky;
 mod sky_cap;
 mod sphere;
 
+pub use arrival::Arrival;
 pub use directional::DirectionalLight;
 pub use disk::DiskLight;
 pub use error::EmitterError;

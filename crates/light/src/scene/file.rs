@@ -78,6 +78,31 @@ struct RawEmitter {
     irradiance: Option<f64>,
 }
 
+/// One `[[emitters]]` entry of a scene file as written, checked against its
+/// kind only when built: for file formats that embed this one's emitters
+/// (the tracer's scene files), so that both read emitters by one set of
+/// rules and report errors alike.
+///
+/// ```
+/// use lambert_light::scene::EmitterEntry;
+/// let entry: EmitterEntry = toml::from_str("kind = \"point\"\nposition = [0.0, 0.0, 1.0]\nflux = 4.0").unwrap();
+/// assert_eq!(entry.build()?.kind(), "point");
+/// let bad: EmitterEntry = toml::from_str("kind = \"sky\"\nradius = 1.0").unwrap();
+/// assert_eq!(bad.build().unwrap_err().field, "radius");
+/// # Ok::<(), lambert_light::EmitterError>(())
+/// ```
+#[derive(Deserialize)]
+#[serde(transparent)]
+pub struct EmitterEntry(RawEmitter);
+
+impl EmitterEntry {
+    /// The emitter, validated. Errors name the field without its place
+    /// (`radius`); add the place with [`EmitterError::within`].
+    pub fn build(&self) -> Result<Emitter, EmitterError> {
+        build(&self.0)
+    }
+}
+
 /// The fields each kind accepts (besides `kind`).
 fn allowed(kind: &str) -> Option<&'static [&'static str]> {
     Some(match kind {

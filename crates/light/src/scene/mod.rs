@@ -28,7 +28,7 @@
 mod file;
 
 #[cfg(feature = "scene-file")]
-pub use file::SceneError;
+pub use file::{EmitterEntry, SceneError};
 
 use crate::emitter::{Emitter, EmitterError};
 use crate::receiver::Receiver;

@@ -1,0 +1,183 @@
+//! `lambert render SCENE|whitted|cornell`: ray casting, Whitted ray
+//! tracing or an irradiance image, written as linear OpenEXR with a PNG
+//! preview beside it.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use lambert_estimator::point::PointConfig;
+use lambert_tracer::output::write_outputs;
+use lambert_tracer::{builtin, render_with_threads, scene_file, Mode, RenderConfig};
+use serde_json::json;
+
+/// Options of `lambert render`.
+#[derive(Args, Debug, Clone)]
+#[command(after_long_help = AFTER_HELP)]
+pub struct RenderOptions {
+    /// A scene file (TOML), or a built-in scene: whitted | cornell.
+    pub scene: String,
+    /// raycast (nearest hit, direct light, shadow rays) | whitted
+    /// (recursive reflection and refraction) | irradiance (E = ∫ L V cos θ dω
+    /// at each pixel's first hit, with its standard error).
+    #[arg(long, default_value = "whitted")]
+    pub mode: String,
+    /// Image width in pixels (default: the scene's camera; 512 for the
+    /// built-ins).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels (default: the scene's camera).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// The OpenEXR file to write; the PNG preview goes beside it
+    /// (FILE.png).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Print a one-line JSON summary (seconds, rays, rays_per_second,
+    /// mean_relative_std_error, …) instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Samples per irradiance estimate (irradiance mode; area emitters in
+    /// the other modes).
+    #[arg(long, default_value_t = 64)]
+    pub spp: u64,
+    /// auto | uniform-hemisphere | cosine-hemisphere | light | area | mis |
+    /// mis-balance.
+    #[arg(long, default_value = "auto")]
+    pub strategy: String,
+    /// independent | stratified | sobol (the last two need --spp ≥ 32).
+    #[arg(long, default_value = "independent")]
+    pub sequence: String,
+    /// Seed (the image is the same for a seed whatever --threads).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Irradiance mode: the closed form, ignoring occluders, instead of
+    /// the estimate.
+    #[arg(long)]
+    pub analytic: bool,
+    /// Recursion depth of the whitted mode.
+    #[arg(long, default_value_t = 5)]
+    pub depth: u32,
+    /// Worker threads (default: every core).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+const AFTER_HELP: &str = "\
+Output: FILE.exr, linear f32 OpenEXR with channels R, G, B (radiance, W/m²/sr), irradiance.Y
+(W/m² at each pixel's first hit) and, in irradiance mode, std_error.Y; FILE.png, a tone-mapped
+sRGB preview. Both are written to temporary files and renamed into place, so a failed run
+leaves no partial image. Bad input (an unknown field, a NaN, a camera inside a sphere, a
+missing or non-manifold mesh, a zero-size image) exits with code 2 and a message naming the
+field.
+
+Examples:
+  lambert render whitted --out whitted.exr
+  lambert render cornell --mode irradiance --spp 64 --strategy light --out cornell.exr --json
+  lambert render scene.toml --mode raycast --width 320 --height 240 --out scene.exr";
+
+/// Runs the command.
+pub fn run(options: &RenderOptions) -> Result<(), String> {
+    let mode: Mode = options.mode.parse().map_err(|e| format!("--mode: {e}"))?;
+    let (strategy, sequence) =
+        crate::parse::strategy_and_sequence(&options.strategy, &options.sequence)?;
+    if options.analytic && mode != Mode::Irradiance {
+        return Err("--analytic: only the irradiance mode has a closed form".into());
+    }
+    let threads = match options.threads {
+        Some(t) => t,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    let scene = match builtin::builtin(&options.scene) {
+        Some(scene) => scene,
+        None => {
+            let path = PathBuf::from(&options.scene);
+            if !path.exists() {
+                return Err(format!(
+                    "SCENE: {:?} is neither a built-in scene ({}) nor a file",
+                    options.scene,
+                    builtin::BUILTIN_SCENES.join(", ")
+                ));
+            }
+            scene_file::load(&path).map_err(|e| format!("{}: {e}", path.display()))?
+        }
+    };
+    let camera = scene.camera();
+    let (width, height) = (
+        options.width.unwrap_or(camera.width()),
+        options.height.unwrap_or(camera.height()),
+    );
+    let scene = scene
+        .with_size(width, height)
+        .map_err(|e| format!("--{e}"))?;
+    let config = RenderConfig {
+        mode,
+        max_depth: options.depth,
+        estimate: PointConfig {
+            strategy,
+            sequence,
+            samples: options.spp,
+            seed: options.seed,
+        },
+        analytic: options.analytic,
+        ..RenderConfig::default()
+    };
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} tiles, {eta}")
+            .map_err(|e| e.to_string())?,
+    );
+    bar.set_message(format!("render {} ({mode})", options.scene));
+    let progress = |done: u64, total: u64| {
+        bar.set_length(total);
+        bar.set_position(done);
+    };
+    let rendered = render_with_threads(&scene, &config, threads, &progress).map_err(|e| {
+        let message = e.to_string();
+        // Estimator fields are command-line options here.
+        if message.starts_with("samples:") || message.contains(".samples:") {
+            format!("--spp: {}", e.problem)
+        } else {
+            message
+        }
+    })?;
+    bar.finish_and_clear();
+    let (exr, png) = write_outputs(&rendered.image, &options.out).map_err(|e| e.to_string())?;
+    let s = &rendered.stats;
+    if options.json {
+        let value = json!({
+            "scene": options.scene,
+            "mode": mode.name(),
+            "width": width,
+            "height": height,
+            "seconds": s.seconds,
+            "rays": s.rays.total(),
+            "camera_rays": s.rays.camera,
+            "secondary_rays": s.rays.secondary,
+            "shadow_rays": s.rays.shadow,
+            "rays_per_second": s.rays_per_second(),
+            "mean_relative_std_error": (mode == Mode::Irradiance && !options.analytic)
+                .then_some(s.mean_relative_std_error),
+            "threads": threads,
+            "exr": exr.display().to_string(),
+            "png": png.display().to_string(),
+        });
+        println!("{value}");
+    } else {
+        println!(
+            "{} ({mode}, {width}×{height}): {:.3} s, {} rays ({:.3e} rays/s) on {threads} thread(s)",
+            options.scene,
+            s.seconds,
+            s.rays.total(),
+            s.rays_per_second()
+        );
+        if mode == Mode::Irradiance && !options.analytic {
+            println!(
+                "mean relative standard error {:.3e} ({} samples per pixel, {strategy} × {sequence})",
+                s.mean_relative_std_error, options.spp
+            );
+        }
+        println!("wrote {} and {}", exr.display(), png.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,85 @@
+//! Reflectance textures: a constant, or a checkerboard over the surface
+//! parameters.
+
+use glam::DVec2;
+
+use crate::color::Rgb;
+use crate::error::TracerError;
+
+/// A reflectance that may vary over a surface, looked up by the hit's
+/// surface parameters (u, v) (for planes, metres along the plane's axes;
+/// for parallelograms, the fractions along the edges; see
+/// `lambert_geometry`'s shapes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Texture {
+    /// The same everywhere.
+    Constant(Rgb),
+    /// Squares of side 1/`scale` in (u, v), alternating `even` (where
+    /// ⌊u·scale⌋ + ⌊v·scale⌋ is even) and `odd` (Whitted's checkerboard).
+    Checker {
+        /// The colour of even squares.
+        even: Rgb,
+        /// The colour of odd squares.
+        odd: Rgb,
+        /// Squares per unit of u and v.
+        scale: f64,
+    },
+}
+
+impl Texture {
+    /// The reflectance at surface parameters `uv`.
+    #[inline]
+    pub fn at(&self, uv: DVec2) -> Rgb {
+        match *self {
+            Texture::Constant(c) => c,
+            Texture::Checker { even, odd, scale } => {
+                // The parity of ⌊u·s⌋ + ⌊v·s⌋ (as integers: exact for
+                // |u·s| < 2⁶³, saturating beyond, where squares are far
+                // below a pixel anyway).
+                let k = (uv.x * scale).floor() as i64 ^ (uv.y * scale).floor() as i64;
+                if k & 1 == 0 {
+                    even
+                } else {
+                    odd
+                }
+            }
+        }
+    }
+
+    /// Checks every reflectance is in [0, 1] and the scale finite and
+    /// positive (errors name the field: `albedo`, `even`, `odd`, `scale`).
+    pub fn validate(&self, field: &str) -> Result<(), TracerError> {
+        match *self {
+            Texture::Constant(c) => reflectance(field, c),
+            Texture::Checker { even, odd, scale } => {
+                reflectance("even", even).map_err(|e| e.within(field))?;
+                reflectance("odd", odd).map_err(|e| e.within(field))?;
+                if !(scale.is_finite() && scale > 0.0) {
+                    return Err(TracerError::new(
+                        "scale",
+                        format!("must be finite and positive, got {scale}"),
+                    )
+                    .within(field));
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Checks a reflectance: every channel finite and in [0, 1] (a surface
+/// reflects at most what it receives).
+pub fn reflectance(field: &str, c: Rgb) -> Result<(), TracerError> {
+    for v in [c.r, c.g, c.b] {
+        if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+            return Err(TracerError::new(
+                field,
+                format!(
+                    "every channel must lie in [0, 1], got [{}, {}, {}]",
+                    c.r, c.g, c.b
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
