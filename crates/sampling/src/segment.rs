@@ -22,7 +22,7 @@
 //! largest area solved for directly (A = π/2; larger areas are solved through
 //! the complementary segment, S(φ) + S(π − φ) = π). Halley's iteration is
 //! cubically convergent: 16 % → ≲ 1e-3 → ≲ 1e-9 → converged; a step below
-//! √ε φ is the last (the error it leaves is ~ε^{3/2}), so the iteration stops
+//! ¼ε^{1/3} φ is the last (the error it leaves is ~step³ ≲ ε/64), so the iteration stops
 //! after at most `SEGMENT_MAX_ITERATIONS`
 //! steps (measured: ≤ 3 in f64, ≤ 2 in f32); the result's error is then that
 //! of evaluating S itself, a few ulps.
@@ -30,6 +30,15 @@
 macro_rules! segment_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
         use lambert_geometry::precision::$p::{Real, PI};
+        /// ε^{1/3} of the precision, rounded up (the acceptance scale of a
+        /// last Halley step: it leaves an error of ~step³), as a constant
+        /// (`cbrt` is not evaluated at compile time).
+        pub const CBRT_EPSILON: Real = if Real::EPSILON < 1e-10 {
+            6.055_454_452_393_35e-6_f64 as Real
+        } else {
+            4.921_566e-3
+        };
+
         /// The most Halley steps [`segment_height`] takes (it stops earlier
         /// when a step changes φ by ≤ 4ε relative; see the module docs).
         pub const SEGMENT_MAX_ITERATIONS: usize = 8;
@@ -112,9 +121,10 @@ macro_rules! segment_impl {
                     }
                     let step = 2.0 * f * f1 / denominator;
                     phi = (phi - step).clamp(0.0, 0.5 * PI);
-                    // Halley's error after a step of relative size √ε is
-                    // ~ε^{3/2}: no need to evaluate S again.
-                    if step.abs() <= Real::EPSILON.sqrt() * phi {
+                    // Halley's error after a step of relative size s is
+                    // ~s³: below ¼ε^{1/3} that is ≲ ε/64, no need to
+                    // evaluate S again.
+                    if step.abs() <= 0.25 * CBRT_EPSILON * phi {
                         break;
                     }
                 }
