@@ -415,7 +415,9 @@ fn judge_analytic(map: &Map<String, Value>, context: &Context) -> Result<(), Fai
 /// to `lambert analytic`'s answer (null when it refused); `rel_error`
 /// null exactly when `analytic` is null or 0, `z` null exactly when
 /// `analytic` is null or the standard error is 0; mean ≥ 0, standard
-/// error ≥ 0, the interval ordered around the mean, `samples` as asked.
+/// error ≥ 0, the interval ordered around the mean, `samples` as asked,
+/// `hits` at most `samples`, `interval` one of clt, rare-event, bounded,
+/// and a `warning` (text) exactly when the interval is not clt.
 fn judge_estimate(call: &Call, map: &Map<String, Value>, context: &Context) -> Result<(), Failure> {
     keys_are(
         map,
@@ -429,10 +431,37 @@ fn judge_estimate(call: &Call, map: &Map<String, Value>, context: &Context) -> R
             "analytic",
             "rel_error",
             "z",
+            "hits",
+            "interval",
+            "warning",
         ],
     )?;
     let mean = number(map, "mean")?;
     let se = number(map, "std_error")?;
+    let interval = map.get("interval").and_then(Value::as_str);
+    if !matches!(interval, Some("clt" | "rare-event" | "bounded")) {
+        return Err(Failure {
+            class: Class::BadJson,
+            detail: format!("`interval` = {:?}", map.get("interval")),
+        });
+    }
+    let warned = match map.get("warning") {
+        Some(Value::String(_)) => true,
+        Some(Value::Null) => false,
+        other => {
+            return Err(Failure {
+                class: Class::BadJson,
+                detail: format!("`warning` = {other:?} is neither text nor null"),
+            })
+        }
+    };
+    if warned == (interval == Some("clt")) {
+        return Err(inconsistent(format!(
+            "interval {interval:?} with warning {:?}: a warning must come with \
+             every interval but the clt one",
+            map.get("warning")
+        )));
+    }
     number(map, "seconds")?;
     number(map, "ns_per_sample")?;
     let ci = match map.get("ci99") {
@@ -458,6 +487,13 @@ fn judge_estimate(call: &Call, map: &Map<String, Value>, context: &Context) -> R
         return Err(inconsistent(format!(
             "samples {:?}, asked {asked:?}",
             map.get("samples")
+        )));
+    }
+    let hits = map.get("hits").and_then(Value::as_u64);
+    if hits.is_none_or(|h| Some(h) > samples) {
+        return Err(inconsistent(format!(
+            "hits {:?} of {samples:?} samples",
+            map.get("hits")
         )));
     }
     let analytic = match context.closed_form {
@@ -639,7 +675,7 @@ mod tests {
         let call = Call::from_template("estimate {scene} --json --samples 64").unwrap();
         let line = |mean: &str, se: &str, analytic: &str, rel: &str, z: &str| {
             format!(
-                "{{\"mean\":{mean},\"std_error\":{se},\"ci99\":[0.5,1.5],\"samples\":64,\"seconds\":0.1,\"ns_per_sample\":3.0,\"analytic\":{analytic},\"rel_error\":{rel},\"z\":{z}}}\n"
+                "{{\"mean\":{mean},\"std_error\":{se},\"ci99\":[0.5,1.5],\"samples\":64,\"seconds\":0.1,\"ns_per_sample\":3.0,\"analytic\":{analytic},\"rel_error\":{rel},\"z\":{z},\"hits\":64,\"interval\":\"clt\",\"warning\":null}}\n"
             )
         };
         let ctx = Context {

@@ -221,6 +221,7 @@ fn bad_input_is_a_clear_error() {
         SamplingError::Degenerate { what } => what.to_string(),
         SamplingError::InsideLight { .. } => "inside".to_string(),
         SamplingError::Geometry(g) => g.field().to_string(),
+        SamplingError::TooManyVertices { .. } => "vertices".to_string(),
     };
     // Caps.
     assert_eq!(field(ProjectedCap::new(nan, 0.1).unwrap_err()), "axis");

@@ -358,6 +358,21 @@ fn bad_polygons_are_named() {
         &one("kind = \"polygon\"\nvertices = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [2.0, 0.0, 1.0]]\nradiance = 1.0"),
         &["emitters[0].vertices", "zero area"],
     );
+    // 65 vertices: more than the polygon light sampler clips in its fixed
+    // buffer.
+    let ring: Vec<String> = (0..65)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / 65.0;
+            format!("[{:?}, {:?}, 1.0]", a.cos(), a.sin())
+        })
+        .collect();
+    error_of(
+        &one(&format!(
+            "kind = \"polygon\"\nvertices = [{}]\nradiance = 1.0",
+            ring.join(", ")
+        )),
+        &["emitters[0].vertices", "at most 64 vertices", "got 65"],
+    );
 }
 
 /// Found by the fuzzer: an overflowing area once gave a NaN normal that

@@ -108,15 +108,23 @@ fn json_has_exactly_the_documented_keys() {
         [
             "analytic",
             "ci99",
+            "hits",
+            "interval",
             "mean",
             "ns_per_sample",
             "rel_error",
             "samples",
             "seconds",
             "std_error",
+            "warning",
             "z"
         ]
     );
+    // Light sampling of a sphere wholly above the horizon: every sample
+    // hits, and the interval is the central-limit one, without a warning.
+    assert_eq!(v["hits"].as_u64(), Some(4096));
+    assert_eq!(v["interval"].as_str(), Some("clt"));
+    assert!(v["warning"].is_null(), "{v}");
     let mean = v["mean"].as_f64().unwrap();
     let se = v["std_error"].as_f64().unwrap();
     let ci = v["ci99"].as_array().expect("ci99 is an array");
@@ -155,15 +163,52 @@ fn json_compares_with_the_closed_form_when_there_is_one() {
         let rel = v["rel_error"].as_f64().expect("a number");
         assert_eq!(rel, (mean - analytic) / analytic);
         if strategy == "cosine-hemisphere" {
-            // Zero variance under a uniform sky: exact, z undefined.
-            assert_eq!(v["std_error"].as_f64(), Some(0.0));
-            assert!(v["z"].is_null());
+            // Zero variance under a uniform sky: exact, to rounding; the
+            // standard error is the rounding floor (5u + 4(N + 2)u²)·|E|,
+            // u = 2⁻⁵³, and the error is within it.
+            let u = f64::EPSILON / 2.0;
+            let floor = (5.0 * u + 4.0 * (4096.0 + 2.0) * u * u) * mean;
+            assert_eq!(v["std_error"].as_f64(), Some(floor));
+            assert!(v["z"].as_f64().expect("a number").abs() <= 1.0, "{v}");
             assert!(rel.abs() < 1e-14, "{rel}");
         } else {
             let z = v["z"].as_f64().expect("a number");
             assert!(z.abs() < 5.0, "z = {z}");
         }
     }
+}
+
+/// A sphere 1e-4 rad wide: cosine sampling sees it with probability 1e-8,
+/// so none of 4096 samples hits. The estimate says so: 0 hits, a warning,
+/// and the one-sided interval [0, b] with b ≥ E (here the bound πL·Ω/π =
+/// LΩ, which no mean can exceed), not [0, 0].
+#[test]
+fn json_reports_zero_hits_with_a_warning_and_a_one_sided_interval() {
+    let scene = TempScene::new(
+        "json_zero_hits",
+        &SPHERE
+            .replace("center = [0.0, 5.0, 8.66]", "center = [0.0, 0.0, 10.0]")
+            .replace("radius = 1.0", "radius = 1e-3"),
+    );
+    let out = lambert(&[
+        "estimate",
+        scene.path(),
+        "--json",
+        "--samples",
+        "4096",
+        "--strategy",
+        "cosine-hemisphere",
+    ]);
+    let (v, _) = success_json(&out);
+    assert_eq!(v["hits"].as_u64(), Some(0));
+    assert_eq!(v["mean"].as_f64(), Some(0.0));
+    assert_eq!(v["interval"].as_str(), Some("bounded"));
+    let warning = v["warning"].as_str().expect("a warning");
+    assert!(warning.contains("no hit"), "{warning}");
+    let analytic = v["analytic"].as_f64().unwrap();
+    let ci = v["ci99"].as_array().unwrap();
+    assert_eq!(ci[0].as_f64(), Some(0.0));
+    assert!(ci[1].as_f64().unwrap() >= analytic, "{v}");
 }
 
 #[test]
@@ -232,7 +277,7 @@ fn thread_count_does_not_change_the_result() {
             success_json(&out).1
         };
         let (one, two) = (run("1"), run("2"));
-        for key in ["mean", "std_error"] {
+        for key in ["mean", "std_error", "hits"] {
             assert_eq!(
                 raw_number(&one, key),
                 raw_number(&two, key),

@@ -69,6 +69,12 @@ macro_rules! area_light_impl {
             pub fn new(sphere: Sphere) -> Self {
                 SphereAreaSampler { sphere }
             }
+
+            /// The sphere.
+            #[inline]
+            pub fn sphere(&self) -> &Sphere {
+                &self.sphere
+            }
         }
 
         impl LightSampler for SphereAreaSampler {
@@ -135,6 +141,12 @@ macro_rules! area_light_impl {
                     area: UniformDiskArea::new(&disk),
                     disk,
                 }
+            }
+
+            /// The disk.
+            #[inline]
+            pub fn disk(&self) -> &Disk {
+                &self.disk
             }
         }
 
@@ -271,6 +283,12 @@ macro_rules! area_light_impl {
             #[inline]
             pub fn area(&self) -> Real {
                 self.cumulative.last().copied().unwrap_or(0.0)
+            }
+
+            /// The polygon.
+            #[inline]
+            pub fn polygon(&self) -> &ConvexPolygon {
+                &self.polygon
             }
         }
 

@@ -37,6 +37,14 @@ pub enum SamplingError {
     },
     /// A shape the sampler is built from is invalid.
     Geometry(lambert_geometry::GeometryError),
+    /// A polygon light has more vertices than the sampler's fixed buffer
+    /// holds ([`MAX_POLYGON_VERTICES`](crate::MAX_POLYGON_VERTICES)).
+    TooManyVertices {
+        /// The polygon's vertex count.
+        count: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// The reference point is inside, or on, the light it should sample.
     InsideLight {
         /// Distance from the point to the light's center.
@@ -62,6 +70,11 @@ impl fmt::Display for SamplingError {
             }
             SamplingError::Degenerate { what } => write!(f, "degenerate geometry: {what}"),
             SamplingError::Geometry(e) => write!(f, "{e}"),
+            SamplingError::TooManyVertices { count, limit } => write!(
+                f,
+                "`vertices`: a polygon light has at most {limit} vertices (the sampler clips it \
+                 to the horizon in a fixed buffer), got {count}"
+            ),
             SamplingError::InsideLight { distance, radius } => write!(
                 f,
                 "the reference point is inside or on the sphere light \

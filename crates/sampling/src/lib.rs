@@ -33,6 +33,7 @@ mod disk;
 mod disk_light;
 pub mod error;
 mod hemisphere;
+mod horizon_clip;
 mod light_sample;
 mod light_sampler;
 mod polygon_light;
@@ -51,6 +52,7 @@ mod triangle_light;
 mod trig;
 
 pub use error::SamplingError;
+pub use horizon_clip::MAX_POLYGON_VERTICES;
 
 /// The public items of one precision, re-exported once (one path per item
 /// and precision).

@@ -23,9 +23,19 @@ macro_rules! light_sampler_impl {
         /// Both methods take the shading point's unit `normal`: a sampler
         /// returns `None` (and density 0) when the light lies wholly below
         /// that point's horizon, where it cannot contribute, and is free to
-        /// use the normal to sample better. Samples may still lie below the
-        /// horizon when the light straddles it; they carry cos θ ≤ 0 and
-        /// contribute nothing.
+        /// use the normal to sample better.
+        ///
+        /// When the light straddles the horizon, the polygon and triangle
+        /// samplers (`PolygonLightSampler`, `TriangleLightSampler`) clip it
+        /// and sample only its visible part. The sphere's cone
+        /// (`SphereLightSampler`) and the area
+        /// samplers do not: exact uniform sampling of a cap cut by a plane
+        /// (or of a disk's circular segment by area) has no closed-form
+        /// inverse — its marginal CDF is an integral of arccos terms that
+        /// would need a root-finder per sample — so their samples below the
+        /// horizon carry cos θ ≤ 0 and contribute nothing (an estimator
+        /// counts them as misses). Projected-solid-angle samplers sample
+        /// only the visible part by construction.
         ///
         /// ```
         #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]

@@ -30,6 +30,18 @@ macro_rules! sphere_light_impl {
         /// t = (d − r)(d + r) / (d (cos θ + √(sin²θmax − sin²θ))), the near root of
         /// the ray–sphere quadratic written without cancellation.
         ///
+        /// **The horizon.** The whole cone is sampled even when a shading
+        /// point's horizon cuts it (a sphere straddling the receiver's
+        /// plane); directions below the horizon carry cos θ ≤ 0 and score
+        /// zero. Sampling only the visible part uniformly would need the
+        /// inverse of its marginal CDF in θ, ∫ 2β(θ) sin θ dθ with β(θ) the
+        /// half-width of the visible azimuth arc, an arccos: no closed form,
+        /// so a root-finder per sample. The fraction of samples wasted is
+        /// 1 − Ω_visible/Ω, which matters only when the horizon leaves a
+        /// sliver; projected-solid-angle sampling of the cap handles that
+        /// case exactly, and estimators that use this cone report how many
+        /// of their samples saw the light.
+        ///
         /// ```
         #[doc = concat!("use lambert_geometry::", stringify!($p), "::Sphere;")]
         #[doc = concat!("use lambert_sampling::", stringify!($p), "::SphereSolidAngle;")]

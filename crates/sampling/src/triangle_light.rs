@@ -4,7 +4,9 @@ macro_rules! triangle_light_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
         use crate::error::SamplingError;
         use crate::light_sample::$p::LightSample;
-        use crate::light_sampler::$p::{all_below, LightSampler};
+        use crate::horizon_clip::$p::{horizon, Clipped, Horizon};
+        use crate::light_sampler::$p::LightSampler;
+        use crate::polygon_light::$p::{pdf_fan, sample_fan};
         use crate::spherical_triangle::$p::SphericalTriangle;
         use lambert_geometry::precision::$p::{Real, V2, V3};
         use lambert_geometry::$p::Triangle;
@@ -126,28 +128,50 @@ macro_rules! triangle_light_impl {
                 &self.triangle
             }
 
-            /// The sampler at `reference`; see [`TriangleSolidAngle::new`].
+            /// The sampler of the whole triangle at `reference` (no
+            /// horizon: the [`LightSampler`] methods clip); see
+            /// [`TriangleSolidAngle::new`].
             #[inline]
             pub fn at(&self, reference: V3) -> Result<TriangleSolidAngle, SamplingError> {
                 TriangleSolidAngle::new(reference, &self.triangle)
             }
         }
 
+        /// Samples only what the shading point can see: `None` for a
+        /// triangle wholly below the horizon, the whole spherical triangle
+        /// for one wholly on or above it, and for one that straddles it the
+        /// part above the horizon (a triangle or quadrilateral, clipped on
+        /// the stack, sampled as a fan of spherical triangles with density
+        /// 1/Ω_visible).
         impl LightSampler for TriangleLightSampler {
             #[inline]
             fn sample(&self, reference: V3, normal: V3, u: V2) -> Option<LightSample> {
-                if all_below(reference, normal, &self.triangle.vertices()) {
-                    return None;
+                let vertices = self.triangle.vertices();
+                match horizon(reference, normal, &vertices) {
+                    Horizon::Below => None,
+                    Horizon::Above => self.at(reference).ok().map(|s| s.sample(u)),
+                    Horizon::Straddles => {
+                        let clipped = Clipped::above(reference, normal, &vertices);
+                        let n = self.triangle.normal();
+                        sample_fan(reference, clipped.vertices(), vertices[0], n, u)
+                    }
                 }
-                self.at(reference).ok().map(|s| s.sample(u))
             }
 
             #[inline]
             fn pdf(&self, reference: V3, normal: V3, direction: V3) -> Real {
-                if all_below(reference, normal, &self.triangle.vertices()) {
-                    return 0.0;
+                let vertices = self.triangle.vertices();
+                match horizon(reference, normal, &vertices) {
+                    Horizon::Below => 0.0,
+                    Horizon::Above => self.at(reference).map_or(0.0, |s| s.pdf(direction)),
+                    Horizon::Straddles => {
+                        // The clipped fan lies above the horizon (to the
+                        // spherical triangles' rounding slack, which keeps
+                        // pdf(sample) equal to the sample's density).
+                        let clipped = Clipped::above(reference, normal, &vertices);
+                        pdf_fan(reference, clipped.vertices(), direction)
+                    }
                 }
-                self.at(reference).map_or(0.0, |s| s.pdf(direction))
             }
         }
     };

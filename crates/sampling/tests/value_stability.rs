@@ -216,7 +216,7 @@ macro_rules! hashes {
             ),
             (
                 "polygon_light",
-                Box::new(PolygonLightSampler::new(polygon.clone())),
+                Box::new(PolygonLightSampler::new(polygon.clone()).unwrap()),
             ),
             ("sphere_area", Box::new(SphereAreaSampler::new(sphere))),
             (

@@ -1,12 +1,21 @@
 //! Reducing one row's M replicate estimates to its statistics.
 
+use lambert_estimator::interval::IntervalKind;
+
 /// What one replicate estimate contributes to its row.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReplicateResult {
     /// The estimate, W/m².
     pub mean: f64,
+    /// Its reported standard error.
+    pub std_error: f64,
     /// Its 99 % confidence interval.
     pub ci99: (f64, f64),
+    /// How the interval was formed (anything but the CLT one comes with a
+    /// warning: few or no hits, few misses, a heavy tail).
+    pub interval: IntervalKind,
+    /// Samples whose value was not 0.
+    pub hits: u64,
     /// Wall time per sample, ns.
     pub ns_per_sample: f64,
     /// Variance of one sample's estimate.
@@ -33,6 +42,16 @@ pub struct RowStats {
     /// Fraction of replicates whose 99 % interval contains the truth
     /// (closed interval); `None` without a reference.
     pub coverage: Option<f64>,
+    /// Samples whose value was not 0, summed over the replicates.
+    pub hits: u64,
+    /// Replicates whose interval was not the CLT one (it came with a
+    /// warning: few or no hits, few misses, a heavy tail).
+    pub warnings: usize,
+    /// The root mean square of the replicates' reported standard errors.
+    pub std_error: f64,
+    /// The sample standard deviation of the M estimates (`None` for
+    /// M = 1): what the standard error should match.
+    pub replicate_sd: Option<f64>,
     /// Mean over replicates of the variance of one sample's estimate, V.
     pub sample_variance: f64,
     /// Median over replicates of the wall time per sample, ns (T = this
@@ -68,6 +87,24 @@ pub fn aggregate(truth: Option<f64>, replicates: &[ReplicateResult]) -> RowStats
     assert!(!replicates.is_empty(), "a row needs at least one replicate");
     let m = replicates.len() as f64;
     let mean_estimate = replicates.iter().map(|r| r.mean).sum::<f64>() / m;
+    let hits = replicates.iter().map(|r| r.hits).sum();
+    let warnings = replicates
+        .iter()
+        .filter(|r| r.interval != IntervalKind::CentralLimit)
+        .count();
+    let std_error = (replicates
+        .iter()
+        .map(|r| r.std_error * r.std_error)
+        .sum::<f64>()
+        / m)
+        .sqrt();
+    let replicate_sd = (replicates.len() > 1).then(|| {
+        let ss: f64 = replicates
+            .iter()
+            .map(|r| (r.mean - mean_estimate) * (r.mean - mean_estimate))
+            .sum();
+        (ss / (m - 1.0)).sqrt()
+    });
     let sample_variance = replicates.iter().map(|r| r.sample_variance).sum::<f64>() / m;
     let ns: Vec<f64> = replicates.iter().map(|r| r.ns_per_sample).collect();
     let ns_per_sample = median(&ns);
@@ -110,6 +147,10 @@ pub fn aggregate(truth: Option<f64>, replicates: &[ReplicateResult]) -> RowStats
         rmse,
         rel_rmse,
         coverage,
+        hits,
+        warnings,
+        std_error,
+        replicate_sd,
         sample_variance,
         ns_per_sample,
         efficiency,
@@ -123,7 +164,10 @@ mod tests {
     fn r(mean: f64, lo: f64, hi: f64, ns: f64, v: f64) -> ReplicateResult {
         ReplicateResult {
             mean,
+            std_error: 0.5,
             ci99: (lo, hi),
+            interval: IntervalKind::CentralLimit,
+            hits: 10,
             ns_per_sample: ns,
             sample_variance: v,
         }
@@ -151,6 +195,9 @@ mod tests {
         assert_eq!(s.sample_variance, 3.0);
         // median of 10, 30, 20, 40 = 25
         assert_eq!(s.ns_per_sample, 25.0);
+        assert_eq!((s.hits, s.warnings, s.std_error), (40, 0, 0.5));
+        // Spread of 1, 2, 3, 4 about 2.5: √(5/3).
+        assert_eq!(s.replicate_sd, Some((5.0f64 / 3.0).sqrt()));
         assert!((s.efficiency.unwrap() - 1.0 / (3.0 * 25e-9)).abs() < 1e-3);
     }
 

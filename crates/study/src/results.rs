@@ -19,7 +19,10 @@ use lambert_estimator::strategy::Strategy;
 use crate::aggregate::RowStats;
 
 /// The header line (without the newline).
-pub const CSV_HEADER: &str = "row,scene,strategy,sequence,log2_n,n,replicates,reference,mean_estimate,mean_rel_error,rmse,rel_rmse,coverage,sample_variance,ns_per_sample,efficiency";
+pub const CSV_HEADER: &str = "row,scene,strategy,sequence,log2_n,n,replicates,reference,mean_estimate,mean_rel_error,rmse,rel_rmse,coverage,hits,warnings,std_error,replicate_sd,sample_variance,ns_per_sample,efficiency";
+
+/// The number of columns.
+const COLUMNS: usize = 20;
 
 /// The columns that hold measured times (they differ from run to run); every
 /// other column is deterministic.
@@ -54,7 +57,7 @@ impl ResultRow {
     pub fn to_csv(&self) -> String {
         let s = &self.stats;
         format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             self.row,
             self.scene,
             self.strategy.name(),
@@ -68,6 +71,10 @@ impl ResultRow {
             opt(s.rmse),
             opt(s.rel_rmse),
             opt(s.coverage),
+            s.hits,
+            s.warnings,
+            num(s.std_error),
+            opt(s.replicate_sd),
             num(s.sample_variance),
             num(s.ns_per_sample),
             opt(s.efficiency),
@@ -84,8 +91,13 @@ impl ResultRow {
     /// Parses a CSV line (without the newline).
     pub fn from_csv(line: &str) -> Result<Self, String> {
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 16 {
-            return Err(format!("expected 16 fields, got {}", f.len()));
+        if f.len() != COLUMNS {
+            return Err(format!(
+                "expected {COLUMNS} fields, got {} (a results.csv from before the hits, \
+                 warnings, std_error and replicate_sd columns cannot be resumed or merged: \
+                 run the study again)",
+                f.len()
+            ));
         }
         let row: usize = parse(f[0], "row")?;
         let log2_n: u32 = parse(f[4], "log2_n")?;
@@ -100,9 +112,13 @@ impl ResultRow {
             rmse: parse_opt(f[10], "rmse")?,
             rel_rmse: parse_opt(f[11], "rel_rmse")?,
             coverage: parse_opt(f[12], "coverage")?,
-            sample_variance: parse(f[13], "sample_variance")?,
-            ns_per_sample: parse(f[14], "ns_per_sample")?,
-            efficiency: parse_opt(f[15], "efficiency")?,
+            hits: parse(f[13], "hits")?,
+            warnings: parse(f[14], "warnings")?,
+            std_error: parse(f[15], "std_error")?,
+            replicate_sd: parse_opt(f[16], "replicate_sd")?,
+            sample_variance: parse(f[17], "sample_variance")?,
+            ns_per_sample: parse(f[18], "ns_per_sample")?,
+            efficiency: parse_opt(f[19], "efficiency")?,
         };
         Ok(ResultRow {
             row,
@@ -253,6 +269,10 @@ mod tests {
                 rmse: Some(1e-300),
                 rel_rmse: None,
                 coverage: Some(0.875),
+                hits: 1000,
+                warnings: 1,
+                std_error: 1.0 / 3.0,
+                replicate_sd: Some(0.25),
                 sample_variance: 0.1 + 0.2,
                 ns_per_sample: 12.5,
                 efficiency: None,

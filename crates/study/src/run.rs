@@ -58,7 +58,10 @@ pub fn run_replicates(config: &StudyConfig, key: &RowKey) -> Result<Vec<Replicat
             })?;
             Ok(ReplicateResult {
                 mean: report.mean,
+                std_error: report.std_error,
                 ci99: report.ci99,
+                interval: report.interval,
+                hits: report.hits,
                 ns_per_sample: report.ns_per_sample,
                 sample_variance: report.sample_variance,
             })

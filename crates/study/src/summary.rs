@@ -1,13 +1,17 @@
 //! `summary.md`: per scene, strategy × sequence ranked by the time to reach
 //! 0.1 % relative RMSE and by efficiency, with the fitted convergence slope
-//! next to the theoretical one. Computed from the finished rows (so it works
-//! after a merge of shards).
+//! next to the theoretical one, and notes on the rows whose intervals are
+//! not the CLT ones (few or no hits) and on the rows whose replicate spread
+//! disagrees with their reported standard error ([`spread_band`]).
+//! Computed from the finished rows (so it works after a merge of shards).
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
-use lambert_estimator::estimation::SequenceKind;
+use lambert_estimator::estimation::{SequenceKind, RQMC_REPLICATES};
+use lambert_estimator::statistics::rounding::mean_rounding_floor;
 use lambert_estimator::strategy::Strategy;
+use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor};
 
 use crate::fit::{fit_loglog, LogLogFit};
 use crate::results::ResultRow;
@@ -40,6 +44,65 @@ pub struct GroupSummary {
     /// the fit, times ns/sample; 0 for an exact estimator; `None` without a
     /// reference, with a zero reference, or without a decreasing fit.
     pub time_to_target: Option<f64>,
+    /// (log₂ N, replicates) of the rows where some replicates' intervals
+    /// were not the CLT ones (few or no hits, few misses, a heavy tail).
+    pub warning_rows: Vec<(u32, usize)>,
+    /// (log₂ N, replicate spread / reported standard error) of the rows
+    /// where the ratio falls outside its [`spread_band`].
+    pub spread_flags: Vec<(u32, f64)>,
+}
+
+/// The family-wise level of the spread check over all the rows of a
+/// summary (Šidák-corrected per row).
+pub const SPREAD_FAMILY_ALPHA: f64 = 0.01;
+
+/// The two-sided band, at level 1 − `alpha`, of the ratio s/σ of a row's
+/// replicate spread s (the sample standard deviation of its M estimates)
+/// to its reported standard error σ (the root mean square of the M
+/// replicates' σᵣ), when the σᵣ are honest and the estimates normal:
+/// s²/σ² ~ F(M − 1, ν), ν = ∞ for independent samples (σᵣ from N samples:
+/// χ²(M − 1)/(M − 1)) and ν = M(R − 1) for randomized QMC (each σᵣ from R =
+/// 16 replicates). A ratio above the band means the reported σ is too
+/// small: the signature of a heavy tail (area sampling near an emitter,
+/// whose infinite-variance limit the sample variance cannot show) or of
+/// rare events some replicates saw and others did not. Below it, σ
+/// overstates the error. `None` for M < 2.
+pub fn spread_band(replicates: usize, sequence: SequenceKind, alpha: f64) -> Option<(f64, f64)> {
+    if replicates < 2 {
+        return None;
+    }
+    let d1 = (replicates - 1) as f64;
+    let (lo, hi) = match sequence {
+        SequenceKind::Independent => {
+            let chi = ChiSquared::new(d1).ok()?;
+            (
+                chi.inverse_cdf(alpha / 2.0) / d1,
+                chi.inverse_cdf(1.0 - alpha / 2.0) / d1,
+            )
+        }
+        _ => {
+            let d2 = replicates as f64 * (RQMC_REPLICATES - 1) as f64;
+            let f = FisherSnedecor::new(d1, d2).ok()?;
+            (f.inverse_cdf(alpha / 2.0), f.inverse_cdf(1.0 - alpha / 2.0))
+        }
+    };
+    Some((lo.sqrt(), hi.sqrt()))
+}
+
+/// The ratio s/σ of a row, if it falls outside its band at level
+/// 1 − `alpha`. Rows with σ = 0 (every replicate exact, or no hit) are not
+/// judged, nor, on the low side, rows whose σ is the rounding floor (a bound
+/// on the arithmetic, not a standard deviation).
+fn spread_flag(row: &ResultRow, alpha: f64) -> Option<f64> {
+    let s = &row.stats;
+    let sd = s.replicate_sd?;
+    if !(s.std_error > 0.0) {
+        return None;
+    }
+    let ratio = sd / s.std_error;
+    let (lo, hi) = spread_band(s.replicates, row.sequence, alpha)?;
+    let at_floor = s.std_error <= mean_rounding_floor(s.mean_estimate, row.n()) * 1.000_001;
+    (ratio > hi || (ratio < lo && !at_floor)).then_some(ratio)
 }
 
 /// The theoretical RMSE slope of a sequence ("exact" handled by the
@@ -57,6 +120,7 @@ pub fn theoretical_slope(sequence: SequenceKind) -> &'static str {
 /// Groups rows by (scene, strategy, sequence), in the rows' order of first
 /// appearance, and summarises each group.
 pub fn group_summaries(rows: &[ResultRow]) -> Vec<GroupSummary> {
+    let alpha = sidak(SPREAD_FAMILY_ALPHA, rows.len());
     let mut order: Vec<(String, Strategy, SequenceKind)> = Vec::new();
     let mut groups: BTreeMap<usize, Vec<&ResultRow>> = BTreeMap::new();
     let mut sorted: Vec<&ResultRow> = rows.iter().collect();
@@ -104,9 +168,33 @@ pub fn group_summaries(rows: &[ResultRow]) -> Vec<GroupSummary> {
                 final_rel_rmse: last.stats.rel_rmse,
                 n_max: last.n(),
                 time_to_target,
+                warning_rows: g
+                    .iter()
+                    .filter(|r| r.stats.warnings > 0)
+                    .map(|r| (r.log2_n, r.stats.warnings))
+                    .collect(),
+                spread_flags: g
+                    .iter()
+                    .filter_map(|r| spread_flag(r, alpha).map(|x| (r.log2_n, x)))
+                    .collect(),
             }
         })
         .collect()
+}
+
+/// The per-test level of a family of `k` tests at family-wise level
+/// `alpha` (Šidák 1967): 1 − (1 − α)^{1/k}.
+fn sidak(alpha: f64, k: usize) -> f64 {
+    -((1.0 - alpha).ln() / k.max(1) as f64).exp_m1()
+}
+
+/// "2^5, 2^6 (3 of 8), …" for the rows of `items`.
+fn exponents<T>(items: &[(u32, T)], detail: impl Fn(&T) -> String) -> String {
+    items
+        .iter()
+        .map(|(k, x)| format!("2^{k}{}", detail(x)))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn seconds(t: Option<f64>) -> String {
@@ -147,6 +235,17 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
          (Owen-scrambled Sobol) on smooth integrands, −¾ for both with discontinuities; \
          \"exact\" when every replicate has zero error. Scenes without a closed form have no \
          error columns.\n"
+    );
+    let _ = writeln!(
+        s,
+        "Notes under a scene's table: **few hits** lists the N at which some replicates' 99 % \
+         intervals are not the central-limit ones, because a part of the estimate had fewer \
+         than 30 hits (or misses), or area sampling's heavy-tailed core was out of reach; \
+         their intervals come from rare-event bounds and say so. **σ vs spread** lists the N \
+         at which the spread of the replicates disagrees with their reported standard error \
+         (outside its χ² or F band at a {SPREAD_FAMILY_ALPHA} family-wise level, Šidák over \
+         the rows): a ratio far above 1 is the mark of a heavy tail or of rare events, where \
+         the sample variance cannot be trusted.\n"
     );
     let mut scenes: Vec<&str> = Vec::new();
     for g in &groups {
@@ -206,6 +305,33 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
             );
         }
         let _ = writeln!(s);
+        let mut notes = String::new();
+        for g in &gs {
+            if !g.warning_rows.is_empty() {
+                let _ = writeln!(
+                    notes,
+                    "- **few hits**: {} × {} at N = {} (replicates with a warning, of {}).",
+                    g.strategy,
+                    g.sequence,
+                    exponents(&g.warning_rows, |w| format!(" ({w})")),
+                    rows.iter()
+                        .find(|r| r.scene == g.scene)
+                        .map_or(0, |r| r.stats.replicates)
+                );
+            }
+            if !g.spread_flags.is_empty() {
+                let _ = writeln!(
+                    notes,
+                    "- **σ vs spread**: {} × {} at N = {} (spread/σ).",
+                    g.strategy,
+                    g.sequence,
+                    exponents(&g.spread_flags, |x| format!(" ({x:.2})"))
+                );
+            }
+        }
+        if !notes.is_empty() {
+            let _ = writeln!(s, "Notes:\n\n{notes}");
+        }
     }
     s
 }
@@ -230,6 +356,10 @@ mod tests {
                 rmse: Some(rmse),
                 rel_rmse: Some(rmse / 2.0),
                 coverage: Some(1.0),
+                hits: 100,
+                warnings: 0,
+                std_error: rmse,
+                replicate_sd: Some(rmse),
                 sample_variance: rmse,
                 ns_per_sample: 10.0,
                 efficiency: if rmse > 0.0 { Some(1.0) } else { None },
@@ -272,5 +402,49 @@ mod tests {
         assert!(cos < light, "{md}");
         assert!(md.contains("-0.500 ± 0.000"), "{md}");
         assert!(md.contains("| exact | exact |"), "{md}");
+        assert!(
+            !md.contains("- **few hits**") && !md.contains("- **σ vs spread**"),
+            "{md}"
+        );
+    }
+
+    /// A row with warnings is noted; a row whose spread is 10× its σ is
+    /// flagged, and one whose spread matches it is not.
+    #[test]
+    fn notes_few_hits_and_spread_disagreement() {
+        let mut rows: Vec<ResultRow> = (0..4)
+            .map(|k| row(k as usize, Strategy::Area, 10 + k, 1e-3))
+            .collect();
+        rows[1].stats.warnings = 3;
+        rows[2].stats.replicate_sd = Some(1e-2);
+        let g = group_summaries(&rows);
+        assert_eq!(g[0].warning_rows, vec![(11, 3)]);
+        assert_eq!(g[0].spread_flags.len(), 1);
+        assert_eq!(g[0].spread_flags[0].0, 12);
+        let md = summary_markdown("t", &rows);
+        assert!(
+            md.contains("- **few hits**: area × independent at N = 2^11 (3)"),
+            "{md}"
+        );
+        assert!(
+            md.contains("- **σ vs spread**: area × independent at N = 2^12 (10.00)"),
+            "{md}"
+        );
+    }
+
+    /// The band of s/σ for M = 8 independent replicates at α = 0.01:
+    /// √(χ²₀.₀₀₅(7)/7) = √(0.9893/7) and √(χ²₀.₉₉₅(7)/7) = √(20.278/7)
+    /// (tables, to 1e-3).
+    #[test]
+    fn spread_band_matches_chi_square_tables() {
+        let (lo, hi) = spread_band(8, SequenceKind::Independent, 0.01).unwrap();
+        assert!((lo - (0.9893f64 / 7.0).sqrt()).abs() < 1e-3, "{lo}");
+        assert!((hi - (20.278f64 / 7.0).sqrt()).abs() < 1e-3, "{hi}");
+        let (lo_q, hi_q) = spread_band(8, SequenceKind::Sobol, 0.01).unwrap();
+        assert!(
+            lo_q < lo && hi_q > hi,
+            "F band wider than χ²: {lo_q} {hi_q}"
+        );
+        assert_eq!(spread_band(1, SequenceKind::Sobol, 0.01), None);
     }
 }

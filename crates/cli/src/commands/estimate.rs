@@ -1,7 +1,19 @@
 //! `lambert estimate SCENE`: a Monte Carlo estimate of the scene's
 //! irradiance with its statistics, compared with the closed form when one
-//! exists. The JSON keys are fixed (issue 3): mean, std_error, ci99,
-//! samples, seconds, ns_per_sample, analytic, rel_error, z.
+//! exists. The JSON keys are fixed: mean, std_error, ci99, samples,
+//! seconds, ns_per_sample, analytic, rel_error, z (issue 3), and hits,
+//! interval, warning (issue 12):
+//!
+//! - `hits`: samples whose value was not 0 (they reached a light);
+//! - `interval`: how `ci99` was formed — `clt` (m ± q·se), `rare-event`
+//!   (the CLT for the well-sampled parts plus rare-event bounds) or
+//!   `bounded` (from the bound on a sample's value; valid with any number
+//!   of hits); see `lambert_estimator::interval`;
+//! - `warning`: `null`, or why the CLT interval would not hold (no or few
+//!   hits, few misses, a heavy tail).
+//!
+//! Every number is finite; `ci99`'s upper end is f64::MAX when the bound on
+//! a sample's value overflows (area sampling ~1e-150 m from a light).
 
 use std::path::PathBuf;
 
@@ -87,6 +99,9 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
             "analytic": analytic,
             "rel_error": rel_error,
             "z": z,
+            "hits": report.hits,
+            "interval": report.interval.name(),
+            "warning": report.warning.map(|w| w.to_string()),
         });
         println!("{value}");
     } else {
@@ -99,9 +114,12 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
             report.ci99.0, report.ci99.1
         );
         println!(
-            "{} samples, {strategy} × {sequence}, {:.3} s, {:.2} ns/sample",
-            report.samples, report.seconds, report.ns_per_sample
+            "{} samples ({} hits), {strategy} × {sequence}, {:.3} s, {:.2} ns/sample",
+            report.samples, report.hits, report.seconds, report.ns_per_sample
         );
+        if let Some(w) = report.warning {
+            println!("warning ({} interval): {w}", report.interval);
+        }
         match analytic {
             Some(a) => println!(
                 "closed form {a:.10} W/m²: relative error {:.3e}, z = {}",

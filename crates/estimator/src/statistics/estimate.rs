@@ -81,6 +81,8 @@ pub struct Estimate {
     n: u64,
     /// Non-finite samples pushed (not in the sums).
     non_finite: u64,
+    /// Finite samples pushed that were not 0 (the hits).
+    nonzero: u64,
     /// Σx, compensated.
     sum: NeumaierSum,
     /// The mean Σx / n as an unevaluated pair `mean_hi + mean_lo`.
@@ -108,6 +110,7 @@ impl Estimate {
         Self {
             n: 0,
             non_finite: 0,
+            nonzero: 0,
             sum: NeumaierSum::new(),
             mean_hi: 0.0,
             mean_lo: 0.0,
@@ -126,6 +129,7 @@ impl Estimate {
         }
         let before = (x - self.mean_hi) - self.mean_lo;
         self.n += 1;
+        self.nonzero += u64::from(x != 0.0);
         self.sum.add(x);
         let (hi, lo) = split_mean(&self.sum, self.n);
         self.mean_hi = hi;
@@ -140,7 +144,8 @@ impl Estimate {
     /// Welford's update and cost a fraction of a push per sample, so the
     /// estimators fill a chunk's values in a buffer and summarise it here;
     /// the result merges like any other estimate. Non-finite values are
-    /// counted in [`non_finite`](Estimate::non_finite).
+    /// counted in [`non_finite`](Estimate::non_finite), non-zero ones in
+    /// [`nonzero`](Estimate::nonzero) (in the first pass, with the sums).
     pub fn from_values(values: &[f64]) -> Estimate {
         // Four interleaved compensated sums, merged in a fixed order: the
         // same accuracy as one, without one long dependency chain.
@@ -148,12 +153,14 @@ impl Estimate {
         let mut lanes = [NeumaierSum::new(); LANES];
         let mut n = 0u64;
         let mut non_finite = 0u64;
+        let mut nonzero = 0u64;
         let mut blocks = values.chunks_exact(LANES);
         for block in blocks.by_ref() {
             for (lane, &x) in lanes.iter_mut().zip(block) {
                 if x.is_finite() {
                     lane.add(x);
                     n += 1;
+                    nonzero += u64::from(x != 0.0);
                 } else {
                     non_finite += 1;
                 }
@@ -163,6 +170,7 @@ impl Estimate {
             if x.is_finite() {
                 lane.add(x);
                 n += 1;
+                nonzero += u64::from(x != 0.0);
             } else {
                 non_finite += 1;
             }
@@ -201,6 +209,7 @@ impl Estimate {
         Estimate {
             n,
             non_finite,
+            nonzero,
             sum,
             mean_hi,
             mean_lo,
@@ -234,6 +243,7 @@ impl Estimate {
             let block = Estimate {
                 n: k,
                 non_finite: 0,
+                nonzero: if x != 0.0 { k } else { 0 },
                 sum: NeumaierSum::from_parts(hi, lo),
                 mean_hi: x,
                 mean_lo: 0.0,
@@ -268,6 +278,7 @@ impl Estimate {
         self.m2.add(delta * delta * (na * (nb / n as f64)));
         self.n = n;
         self.non_finite += other.non_finite;
+        self.nonzero += other.nonzero;
         let (hi, lo) = split_mean(&self.sum, n);
         self.mean_hi = hi;
         self.mean_lo = lo;
@@ -289,6 +300,14 @@ impl Estimate {
     /// every statistic is `None`.
     pub fn non_finite(&self) -> u64 {
         self.non_finite
+    }
+
+    /// The number of finite samples pushed that were not 0: the *hits* of a
+    /// Monte Carlo estimate whose samples are 0 wherever the integrand is
+    /// not seen. With few hits the sample variance says little about the
+    /// error (see [`bounded`](super::bounded)).
+    pub fn nonzero(&self) -> u64 {
+        self.nonzero
     }
 
     /// True if no sample, finite or not, was pushed.

@@ -31,6 +31,21 @@ use std::ops::Range;
 /// Chunks estimated in parallel before their results are folded in order.
 pub const BATCH_CHUNKS: u64 = 1024;
 
+/// A chunk's result that [`run_chunked`] can fold: `Default` is the result
+/// of no samples, and `merge` must be a pure function of the two states
+/// (the same states merged in the same order give the same bits).
+pub trait Mergeable: Default + Send {
+    /// Folds `other` (the next chunk in order) into `self`.
+    fn merge(&mut self, other: &Self);
+}
+
+impl Mergeable for Estimate {
+    #[inline]
+    fn merge(&mut self, other: &Self) {
+        Estimate::merge(self, other);
+    }
+}
+
 /// The estimate and timing of a [`run_chunked_timed`] run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TimedEstimate {
@@ -46,7 +61,8 @@ pub struct TimedEstimate {
 ///
 /// `chunk(k, range)` estimates chunk `k` over the sample indices `range`; it
 /// must depend only on `(k, range)` for the result to be reproducible. A
-/// panic in it propagates to the caller.
+/// panic in it propagates to the caller. ([`run_chunked_merge`] folds any
+/// [`Mergeable`] chunk result, e.g. an estimate with counts beside it.)
 ///
 /// ```
 /// use lambert_estimator::statistics::{run_chunked, Estimate};
@@ -69,6 +85,25 @@ pub fn run_chunked<F>(
 where
     F: Fn(u64, Range<u64>) -> Estimate + Sync + Send,
 {
+    run_chunked_merge(total_samples, chunk_size, threads, chunk)
+}
+
+/// [`run_chunked`] for any [`Mergeable`] chunk result: the same fixed
+/// chunks, folded in chunk order, so the result is bit-identical for any
+/// `threads`.
+///
+/// # Errors
+/// As [`run_chunked`].
+pub fn run_chunked_merge<T, F>(
+    total_samples: u64,
+    chunk_size: u64,
+    threads: usize,
+    chunk: F,
+) -> Result<T, StatisticsError>
+where
+    T: Mergeable,
+    F: Fn(u64, Range<u64>) -> T + Sync + Send,
+{
     if chunk_size == 0 {
         return Err(StatisticsError::ZeroChunkSize);
     }
@@ -84,7 +119,7 @@ where
         // One thread: run the chunks inline, in order (the same merge order
         // as below, so the same bits), without building a thread pool —
         // which costs more than a small estimate (studies run thousands).
-        let mut total = Estimate::new();
+        let mut total = T::default();
         for k in 0..chunks {
             total.merge(&chunk(k, range_of(k)));
         }
@@ -94,12 +129,12 @@ where
         .num_threads(threads)
         .build()
         .map_err(|e| StatisticsError::ThreadPool(e.to_string()))?;
-    let mut total = Estimate::new();
+    let mut total = T::default();
     pool.install(|| {
         let mut first = 0;
         while first < chunks {
             let last = first.saturating_add(BATCH_CHUNKS).min(chunks);
-            let batch: Vec<Estimate> = (first..last)
+            let batch: Vec<T> = (first..last)
                 .into_par_iter()
                 .map(|k| chunk(k, range_of(k)))
                 .collect();

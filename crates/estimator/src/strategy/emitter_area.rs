@@ -13,7 +13,10 @@ use super::emitter_light::LightDirection;
 /// to solid angle at the receiver (pbrt-v4 §4.2.3: p_ω = p_A d²/|cos θ_l|).
 ///
 /// Its variance is unbounded as the receiver approaches the emitter (the
-/// d² of the conversion goes to 0 where the radiance does not): area
+/// d² of the conversion goes to 0 where the radiance does not): the value
+/// reaches L·A/d_min², its relative variance grows as A/d_min², and the
+/// large values come from a core of probability ≈ 3π d_min²/A that small N
+/// never sample (see [`PartShape::HeavyTailed`](super::PartShape)). Area
 /// sampling is offered for comparison and never chosen by `auto`.
 #[derive(Clone, Debug)]
 pub enum EmitterArea {

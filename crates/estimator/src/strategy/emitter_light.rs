@@ -26,6 +26,16 @@ pub struct LightDirection {
 /// spherical triangles chosen by solid angle (Arvo 1995) for polygons
 /// ([`PolygonLightSampler`]), and area sampling converted to solid angle for
 /// disks ([`DiskAreaSampler`]; no solid-angle sampler of a disk yet).
+///
+/// **What is sampled.** Polygons are clipped to the receiver's hemisphere
+/// first, so every sample sees the light and the density is 1/Ω of the
+/// visible part. Spheres' and caps' cones and disks are sampled whole:
+/// samples below the horizon score 0 (the sampling crate's `LightSampler`
+/// docs say why there is no closed-form sampler of the visible part). For a
+/// disk, sampling by area also makes the estimate heavy-tailed when the
+/// receiver is close to it (see [`EmitterArea`](super::EmitterArea)); `auto`
+/// therefore never uses it alone, but inside MIS (power heuristic), whose
+/// weights bound every sample's value by 3πL/2.
 #[derive(Clone, Debug)]
 pub enum EmitterLight {
     /// The whole sphere of directions, uniform.
@@ -55,11 +65,17 @@ impl EmitterLight {
                 Err(_) => EmitterLight::None,
             },
             Emitter::Disk(d) => EmitterLight::Disk(DiskAreaSampler::new(d.disk), *receiver),
-            Emitter::Polygon(poly) => match PolygonLightSampler::new(poly.polygon.clone()).at(p) {
-                PolygonSolidAngle::Fan { triangles, .. } if triangles.is_empty() => {
-                    EmitterLight::None
-                }
-                prepared => EmitterLight::Polygon(prepared),
+            Emitter::Polygon(poly) => match PolygonLightSampler::new(poly.polygon.clone()) {
+                Ok(sampler) => match sampler.at(p, receiver.normal) {
+                    PolygonSolidAngle::Fan { triangles, .. } if triangles.is_empty() => {
+                        EmitterLight::None
+                    }
+                    prepared => EmitterLight::Polygon(prepared),
+                },
+                // More vertices than the sampler holds: rejected when the
+                // emitter is built (`PolygonLight::new`), so unreachable
+                // from a scene; nothing to sample.
+                Err(_) => EmitterLight::None,
             },
             Emitter::Point(_) | Emitter::Directional(_) => EmitterLight::None,
         }

@@ -13,6 +13,27 @@
 //!   heuristic (Veach & Guibas 1995, "Optimally combining sampling
 //!   techniques for Monte Carlo rendering").
 //!
+//! **Bounded and heavy-tailed strategies.** Every technique's one-sample
+//! value is bounded ([`value_bound`] tabulates the bounds): by 2πL, πL,
+//! LΩ or 4πL for the hemisphere and solid-angle techniques, by 3πL/2 (power
+//! heuristic) or 2πL (balance) for MIS, whose weights tame whichever
+//! density is small. Those have finite variance everywhere. **Area
+//! sampling** — the `area` strategy on spheres, disks and polygons, and the
+//! `light` strategy on disks, which samples a disk by area until a
+//! solid-angle sampler of it exists — is different: its value
+//! L cos θ cos θ_l A/d² reaches L·A/d_min², so its relative variance grows
+//! as A/d_min² and is unbounded as the receiver approaches the emitter (a
+//! receiver close under a disk, or a disk far larger than its height); it
+//! is infinite in the limit. Its large values come from a core of the
+//! emitter that a sample reaches with probability q ≈ 3π d_min²/A, so with
+//! N·q small the sample mean is far too small and the sample variance hides
+//! it (|z| of tens to millions). `auto` never picks area sampling alone;
+//! an estimate that uses it with N·q below
+//! [`CLT_MIN_EVENTS`](crate::interval::CLT_MIN_EVENTS) reports a
+//! heavy-tail warning and the interval from its value bound
+//! ([`crate::interval`]), and the study summary flags rows whose replicate
+//! spread disagrees with their reported standard error.
+//!
 //! Delta lights (point, directional) are never sampled: their irradiance is
 //! added exactly. With several emitters each sample draws, for every
 //! non-delta emitter, that emitter's own direction(s) from its own
@@ -23,11 +44,13 @@ mod emitter_area;
 mod emitter_light;
 mod occluded;
 mod prepared;
+pub mod value_bound;
 
 pub use emitter_area::EmitterArea;
 pub use emitter_light::{EmitterLight, LightDirection};
 pub use occluded::{delta_irradiance_visible, OccludedEmitter};
-pub use prepared::PreparedEmitter;
+pub use prepared::{PartHits, PreparedEmitter};
+pub use value_bound::{PartBound, PartShape};
 
 use std::fmt;
 use std::str::FromStr;
@@ -114,9 +137,16 @@ impl Strategy {
 
     /// The technique used for `emitter`: `Auto` picks cosine for a sky
     /// (zero variance), light sampling for spheres and polygons (exact
-    /// solid-angle samplers), MIS (power) for sky caps and disks (which may
-    /// be large or cross the horizon, where cosine sampling wins); `Area`
-    /// on an emitter without area (sky, sky cap) uses its light sampler.
+    /// solid-angle samplers; polygons clipped to the horizon), MIS (power)
+    /// for sky caps and disks (which may be large or cross the horizon,
+    /// where cosine sampling wins). It never picks a heavy-tailed technique:
+    /// a disk's light sampler samples by area, whose variance is unbounded
+    /// near the disk (module docs), so `auto` uses it only inside MIS, whose
+    /// weights bound every sample by 3πL/2. For a sphere cut by the
+    /// horizon, `auto` keeps the cone: it hits the visible part with
+    /// probability Ω_visible/Ω, never less often than a hemisphere sampler
+    /// (Ω_visible/2π), and the estimate reports its hits. `Area` on an
+    /// emitter without area (sky, sky cap) uses its light sampler.
     pub fn resolve(self, emitter: &Emitter) -> Technique {
         match (self, emitter) {
             (Strategy::Auto, Emitter::Sky(_)) => Technique::CosineHemisphere,

@@ -1,5 +1,6 @@
-//! One emitter prepared at one receiver: its technique and samplers, and
-//! the one-sample estimate F = L cos θ / p.
+//! One emitter prepared at one receiver: its technique and samplers, the
+//! one-sample estimate F = L cos θ / p, and the bounds of its parts
+//! ([`PartBound`]).
 
 use glam::{DVec2, DVec3};
 use lambert_light::emitter::Emitter;
@@ -10,10 +11,11 @@ use lambert_sampling::f64::{
 };
 use lambert_sampling::sequence::SampleSequence;
 
-use super::{EmitterArea, EmitterLight, Strategy, Technique};
+use super::{EmitterArea, EmitterLight, PartBound, Strategy, Technique};
 
-/// One emitter prepared for estimation at one receiver: its technique and
-/// its samplers.
+/// One emitter prepared for estimation at one receiver: its technique, its
+/// samplers, and the bounds of the one or two parts of its one-sample
+/// estimate.
 #[derive(Clone, Debug)]
 pub struct PreparedEmitter {
     /// The emitter.
@@ -22,19 +24,42 @@ pub struct PreparedEmitter {
     pub technique: Technique,
     light: EmitterLight,
     area: EmitterArea,
+    parts: [PartBound; 2],
 }
+
+/// How many samples of a batch had a non-zero value in each part of an
+/// emitter's estimate (part 1 only for MIS: its light-sampled direction).
+pub type PartHits = [u64; 2];
 
 impl PreparedEmitter {
     /// Prepares `emitter` at `receiver` for `strategy` (resolved for this
     /// emitter).
     pub fn new(emitter: &Emitter, receiver: &Receiver, strategy: Strategy) -> Self {
         let technique = strategy.resolve(emitter);
+        let light = EmitterLight::new(emitter, receiver);
+        let area = EmitterArea::new(emitter, receiver);
+        let [first, second] = PartBound::of(technique, emitter, receiver, &light, &area);
+        let none = PartBound {
+            max: 0.0,
+            shape: super::PartShape::Bounded,
+            hit_probability: 0.0,
+            name: "none",
+        };
         PreparedEmitter {
             emitter: emitter.clone(),
             technique,
-            light: EmitterLight::new(emitter, receiver),
-            area: EmitterArea::new(emitter, receiver),
+            light,
+            area,
+            parts: [first.unwrap_or(none), second.unwrap_or(none)],
         }
+    }
+
+    /// The bounds of the parts of this emitter's one-sample estimate: one
+    /// for every technique but MIS, which has two (its cosine-sampled and
+    /// its light-sampled direction), in the order of
+    /// [`evaluate_batch`](Self::evaluate_batch)'s hit counts.
+    pub fn parts(&self) -> &[PartBound] {
+        &self.parts[..self.technique.dimensions()]
     }
 
     /// One sample of this emitter's irradiance estimate, drawing its
@@ -101,30 +126,65 @@ impl PreparedEmitter {
                 None => 0.0,
             },
             Technique::Mis(h) => {
-                let mut f = 0.0;
-                let local = sample_cosine_hemisphere(u);
-                let w = frame.from_local(local);
-                let p_cos = pdf_cosine_hemisphere(local);
-                if p_cos > 0.0 {
-                    let p_light = self.light.pdf(w);
-                    f += h.weight(p_cos, p_light) * radiance_cos(w) / p_cos;
-                }
-                if let Some(s) = self.light.sample(u2) {
-                    let local = frame.to_local(s.direction);
-                    let p_cos = pdf_cosine_hemisphere(local);
-                    f += h.weight(s.pdf, p_cos) * radiance_cos(s.direction) / s.pdf;
-                }
-                f
+                let (cosine, light) = self.mis_parts(receiver, h, u, u2);
+                cosine + light
             }
         }
     }
 
+    /// The two parts of an MIS sample: the weighted value of the
+    /// cosine-sampled direction (from `u`) and of the light-sampled one
+    /// (from `u2`); each is 0 when its direction is not drawn or misses.
+    #[inline]
+    fn mis_parts(
+        &self,
+        receiver: &Receiver,
+        h: super::Heuristic,
+        u: DVec2,
+        u2: DVec2,
+    ) -> (f64, f64) {
+        let p = receiver.point;
+        let frame = &receiver.frame;
+        let radiance_cos = |w: DVec3| {
+            let cos = w.dot(receiver.normal);
+            if cos > 0.0 {
+                self.emitter.radiance_toward(p, w) * cos
+            } else {
+                0.0
+            }
+        };
+        let mut cosine = 0.0;
+        let local = sample_cosine_hemisphere(u);
+        let w = frame.from_local(local);
+        let p_cos = pdf_cosine_hemisphere(local);
+        if p_cos > 0.0 {
+            let p_light = self.light.pdf(w);
+            cosine = h.weight(p_cos, p_light) * radiance_cos(w) / p_cos;
+        }
+        let mut light = 0.0;
+        if let Some(s) = self.light.sample(u2) {
+            let local = frame.to_local(s.direction);
+            let p_cos = pdf_cosine_hemisphere(local);
+            light = h.weight(s.pdf, p_cos) * radiance_cos(s.direction) / s.pdf;
+        }
+        (cosine, light)
+    }
+
     /// Adds this emitter's estimate for each sample of a chunk to `out`
-    /// (`out[i] += F(u[i], u2[i])`). Light sampling of a cone (spheres,
-    /// sky caps) runs through the slice form of the cone warp, which the
-    /// compiler can vectorise; everything else loops over
-    /// [`evaluate_u`](Self::evaluate_u).
-    pub fn evaluate_batch(&self, receiver: &Receiver, u: &[DVec2], u2: &[DVec2], out: &mut [f64]) {
+    /// (`out[i] += F(u[i], u2[i])`) and returns, per part
+    /// ([`parts`](Self::parts)), how many samples had a non-zero value
+    /// there (counted in the same pass, without a branch). Light sampling
+    /// of a cone (spheres, sky caps) runs through the slice form of the
+    /// cone warp, which the compiler can vectorise; everything else loops
+    /// over [`evaluate_u`](Self::evaluate_u).
+    pub fn evaluate_batch(
+        &self,
+        receiver: &Receiver,
+        u: &[DVec2],
+        u2: &[DVec2],
+        out: &mut [f64],
+    ) -> PartHits {
+        let mut hits = [0u64; 2];
         if let (Technique::Light, EmitterLight::Sphere(sphere)) = (self.technique, &self.light) {
             // pdf is the constant 1/Ω: F = L Ω max(n·ω, 0).
             let scale = self.uniform_radiance() * sphere.solid_angle();
@@ -138,13 +198,28 @@ impl PreparedEmitter {
                 let local = &mut local[..u_block.len()];
                 cone.sample_batch(u_block, local);
                 for (o, w) in out_block.iter_mut().zip(local.iter()) {
-                    *o += scale * n_local.dot(*w).max(0.0);
+                    let f = scale * n_local.dot(*w).max(0.0);
+                    hits[0] += u64::from(f != 0.0);
+                    *o += f;
                 }
             }
-            return;
+            return hits;
+        }
+        if let Technique::Mis(h) = self.technique {
+            // The sum cosine + light is evaluate_u's value, to the bit.
+            for ((o, &a), &b) in out.iter_mut().zip(u).zip(u2) {
+                let (cosine, light) = self.mis_parts(receiver, h, a, b);
+                hits[0] += u64::from(cosine != 0.0);
+                hits[1] += u64::from(light != 0.0);
+                *o += cosine + light;
+            }
+            return hits;
         }
         for ((o, &a), &b) in out.iter_mut().zip(u).zip(u2) {
-            *o += self.evaluate_u(receiver, a, b);
+            let f = self.evaluate_u(receiver, a, b);
+            hits[0] += u64::from(f != 0.0);
+            *o += f;
         }
+        hits
     }
 }
