@@ -6,7 +6,7 @@
 //!
 //! ```toml
 //! name = "my-study"                       # output folder name
-//! strategies = ["light", "mis"]           # Strategy names (default: the six of the built-in study)
+//! strategies = ["light", "mis"]           # Strategy names (default: the eight of the built-in study)
 //! sequences = ["independent", "sobol"]    # default: all three
 //! n_min_log2 = 5                          # N = 2^5 … 2^12
 //! n_max_log2 = 12
@@ -93,7 +93,7 @@ impl fmt::Display for StudyError {
 impl std::error::Error for StudyError {}
 
 /// The strategies of the built-in study.
-pub const BUILTIN_STRATEGIES: [Strategy; 6] = Strategy::ALL;
+pub const BUILTIN_STRATEGIES: [Strategy; 8] = Strategy::ALL;
 
 /// The built-in study's seed.
 pub const BUILTIN_SEED: u64 = 20261122;
@@ -107,7 +107,7 @@ fn all_builtin_scenes() -> Vec<StudyScene> {
 
 impl StudyConfig {
     /// The default study (`lambert study`, `cargo run --release`): every
-    /// built-in scene × the six strategies × the three sequences × N =
+    /// built-in scene × the eight strategies × the three sequences × N =
     /// 2^5 … 2^18 × 8 replicates. N starts at 2^5 because the randomized-QMC
     /// estimates need 2 samples in each of their 16 randomizations; it stops
     /// at 2^18 so that the whole study runs in under a minute on two cores
