@@ -169,6 +169,12 @@ macro_rules! disk_light_impl {
                 // Lengths scaled to ≤ 1 so that squares and products of
                 // four lengths neither overflow nor underflow.
                 let scale = height.max(rho).max(radius);
+                if !scale.is_finite() {
+                    return Err(SamplingError::Degenerate {
+                        what: "the reference point is so far from the disk that its \
+                               distance overflows",
+                    });
+                }
                 let (h, rh, r) = (height / scale, rho / scale, radius / scale);
                 let t = h * h + (rh - r) * (rh + r);
                 let g = (0.5 * t).hypot(h * r);
@@ -198,6 +204,15 @@ macro_rules! disk_light_impl {
                 let z_axis = e_rho * zc + n * zs;
                 let y_axis = e_rho * zs - n * zc;
                 let x_axis = e_rho.cross(n);
+                if !(cos_a > 0.0 && cos_b > 0.0) {
+                    // The height underflowed against the radius: the cone
+                    // is the hemisphere to within rounding, and the
+                    // elliptic integrals leave their domain.
+                    return Err(SamplingError::Degenerate {
+                        what: "the disk's height is below the rounding of its size (its \
+                               cone of directions is the hemisphere to within rounding)",
+                    });
+                }
                 let mut disk = DiskSolidAngle {
                     reference,
                     normal: n,

@@ -30,11 +30,11 @@ macro_rules! polygon_light_impl {
         #[doc = concat!("    ", stringify!($v3), "::new(-1.0, -1.0, 2.0), ", stringify!($v3), "::new(1.0, -1.0, 2.0),")]
         #[doc = concat!("    ", stringify!($v3), "::new(1.0, 1.0, 2.0), ", stringify!($v3), "::new(-1.0, 1.0, 2.0),")]
         /// ])?;
-        #[doc = concat!("let at = PolygonLightSampler::new(square).at(", stringify!($v3), "::ZERO);")]
+        #[doc = concat!("let at = PolygonLightSampler::new(square)?.at(", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z);")]
         /// assert!(matches!(at, PolygonSolidAngle::Rectangle(_)));
         #[doc = concat!("let s = at.sample(", stringify!($v2), "::new(0.5, 0.5)).unwrap();")]
         /// assert_eq!(at.pdf(s.direction), s.pdf);
-        /// # Ok::<(), lambert_geometry::GeometryError>(())
+        /// # Ok::<(), Box<dyn std::error::Error>>(())
         /// ```
         #[derive(Clone, Debug, PartialEq)]
         pub enum PolygonSolidAngle {
