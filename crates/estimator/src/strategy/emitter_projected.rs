@@ -107,6 +107,19 @@ impl EmitterProjected {
         }
     }
 
+    /// A bound on the rounding error of
+    /// [`projected_solid_angle`](Self::projected_solid_angle), in
+    /// steradians: the polygon sampler's own bound
+    /// ([`ProjectedPolygon::projected_solid_angle_error`]), large only for
+    /// polygons grazing the horizon, and 8ε Ω⊥ for the others (the cap
+    /// formulas and the fan's closed form are exact to a few ulps).
+    pub fn projected_solid_angle_error(&self) -> f64 {
+        match self {
+            EmitterProjected::Polygon(p) => p.projected_solid_angle_error(),
+            other => 8.0 * f64::EPSILON * other.projected_solid_angle(),
+        }
+    }
+
     /// A direction and its density per steradian, or `None` (nothing to
     /// sample, or a sample of zero density).
     #[inline]

@@ -113,6 +113,22 @@ impl PreparedEmitter {
         }
     }
 
+    /// A bound on the error that every sample's value carries alike (W/m²):
+    /// for the `projected` technique, L times the bound on the rounding
+    /// error of the sampler's Ω⊥
+    /// ([`EmitterProjected::projected_solid_angle_error`]), since every
+    /// sample's value is L Ω⊥; 0 for the other techniques, whose samplers'
+    /// normalisation errors are a few ulps of each value and lie under the
+    /// rounding floor.
+    pub fn systematic_error(&self) -> f64 {
+        match self.technique {
+            Technique::Projected => {
+                self.uniform_radiance() * self.projected.projected_solid_angle_error()
+            }
+            _ => 0.0,
+        }
+    }
+
     /// One projected sample's value L max(n·ω, 0)/p (L Ω⊥ for every
     /// sample of a uniform emitter), 0 when nothing is sampled.
     #[inline]
