@@ -222,6 +222,8 @@ fn every_strategy_and_sequence_runs() {
         "area",
         "mis",
         "mis-balance",
+        "projected",
+        "control-variate",
     ];
     let mut means = Vec::new();
     for strategy in strategies {

@@ -298,7 +298,7 @@ mod tests {
     fn parses_inline_and_builtin_scenes() {
         let text = r#"
             name = "t"
-            strategies = ["light", "mis"]
+            strategies = ["light", "mis", "projected", "control-variate"]
             sequences = ["sobol"]
             n_min_log2 = 6
             n_max_log2 = 8
@@ -314,7 +314,15 @@ mod tests {
         assert_eq!(c.scenes.len(), 2);
         assert_eq!(c.scenes[0].name, "sky");
         assert_eq!(c.scenes[0].reference, Some(2.0 * std::f64::consts::PI));
-        assert_eq!(c.strategies.len(), 2);
+        assert_eq!(
+            c.strategies,
+            vec![
+                Strategy::Light,
+                Strategy::Mis(lambert_estimator::strategy::Heuristic::Power),
+                Strategy::Projected,
+                Strategy::ControlVariate
+            ]
+        );
         assert_eq!(c.sequences, vec![SequenceKind::Sobol]);
         assert_eq!(
             (c.n_min_log2, c.n_max_log2, c.replicates, c.seed),
