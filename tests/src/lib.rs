@@ -94,6 +94,70 @@ pub fn conditioning(spec: &DirectionWarpSpec) -> (f64, f64) {
     }
 }
 
+/// The density per steradian each smooth warp is meant to have, written
+/// here from its definition with glam alone — independently of the sampling
+/// crate's code — so that a sampler whose samples and `pdf` agree with each
+/// other but not with the intended density is caught; `None` for the warps
+/// tested on an exact partition of their support ([`partition_for`]),
+/// whose cell probabilities are closed-form solid angles or areas.
+///
+/// * uniform hemisphere 1/(2π) for z ≥ 0; cosine hemisphere max(z, 0)/π;
+///   uniform sphere 1/(4π);
+/// * uniform cone about +z with h = 1 − cos θmax: 1/(2πh) where
+///   1 − cos θ ≤ h, with 1 − cos θ = (x² + y²)/(1 + z) for z > 0 (no
+///   cancellation for tiny cones) and 1 − z otherwise;
+/// * a sphere of center c and radius r seen from the origin: uniform in its
+///   subtended cone, 1/(2πh) with h = s²/(1 + √(1 − s²)), s = r/|c|, where
+///   1 − ω·ĉ = |ω − ĉ|²/2 ≤ h (exact for unit vectors, no cancellation).
+pub fn intended_density(spec: &DirectionWarpSpec) -> Option<Box<dyn Fn(DVec3) -> f64 + Sync>> {
+    use std::f64::consts::PI;
+    fn cap(axis: DVec3, h: f64) -> Box<dyn Fn(DVec3) -> f64 + Sync> {
+        let value = 1.0 / (2.0 * PI * h);
+        Box::new(move |w: DVec3| {
+            let t = if axis == DVec3::Z && w.z > 0.0 {
+                (w.x * w.x + w.y * w.y) / (1.0 + w.z)
+            } else {
+                0.5 * (w - axis).length_squared()
+            };
+            if t <= h {
+                value
+            } else {
+                0.0
+            }
+        })
+    }
+    match spec {
+        DirectionWarpSpec::UniformHemisphere => {
+            Some(Box::new(|w: DVec3| if w.z >= 0.0 { 0.5 / PI } else { 0.0 }))
+        }
+        DirectionWarpSpec::CosineHemisphere => Some(Box::new(|w: DVec3| w.z.max(0.0) / PI)),
+        DirectionWarpSpec::UniformSphere => Some(Box::new(|_| 0.25 / PI)),
+        DirectionWarpSpec::UniformCone {
+            one_minus_cos_theta_max: h,
+        } => Some(cap(DVec3::Z, *h)),
+        DirectionWarpSpec::SphereLight { center, radius } => {
+            let d = center.length();
+            let s2 = (radius / d) * (radius / d);
+            Some(cap(*center / d, s2 / (1.0 + (1.0 - s2).sqrt())))
+        }
+        _ => None,
+    }
+}
+
+/// sin of the angular radius of the warp's support when it lies off the
+/// ±z axis, 1 otherwise: a direction stored with absolute error ε per
+/// component is located in such a support only to ε/that (components near
+/// ±z are exact to relative precision, so supports about ±z lose nothing).
+pub fn angular_scale(spec: &DirectionWarpSpec) -> f64 {
+    match spec.bounding_cap() {
+        Some(cap) if cap.axis.x != 0.0 || cap.axis.y != 0.0 => {
+            let h = cap.one_minus_cos;
+            (h * (2.0 - h)).sqrt().max(1e-300)
+        }
+        _ => 1.0,
+    }
+}
+
 /// The README's Rust example, run as a doc test.
 #[cfg(doctest)]
 #[doc = include_str!("../../README.md")]

@@ -169,7 +169,14 @@ fn cap_every_sample_is_the_closed_form_f64() {
 /// 1e-12 + 8ε·κ, κ = |∂ ln Ω⊥/∂ cos β|: the two see the world direction to
 /// the center through different roundings (a few ε absolute in cos β),
 /// which for a 1e-8 rad sphere straddling the horizon is amplified ~1e8×
-/// (the conditioning of the problem, not of either formula).
+/// (the conditioning of the problem, not of either formula). Plus
+/// 8ε sin²θm/(cos θm Ω⊥): the sampler forms the cap's cos θm from the
+/// rounded distance to the center, 1 − (r/d)² losing ε s²/(1 − s²)
+/// relative, i.e. ε s²/(2 cos θm) absolute in cos θm, which moves Ω⊥ by as
+/// much where the cap straddles the horizon; the light crate's closed form
+/// works in extended precision and does not lose it. It binds only for a
+/// sphere nearly touching the receiver (cos θm ≈ 4.5e-5 at d = r(1 + 1e-9):
+/// measured 1.9e-12 on the horizon).
 #[test]
 fn sphere_every_sample_is_the_closed_form_f64() {
     let mut worst: f64 = 0.0;
@@ -186,7 +193,9 @@ fn sphere_every_sample_is_the_closed_form_f64() {
             let omega = sampler.projected_solid_angle();
             let h = sampler.cap().one_minus_cos_theta_max();
             let kappa = axis_condition(sampler.cap().axis().z, h);
-            let tol = 1e-12 + 8.0 * f64::EPSILON * kappa;
+            let cos_m = 1.0 - h;
+            let distance = 8.0 * f64::EPSILON * h * (2.0 - h) / (cos_m * omega);
+            let tol = 1e-12 + 8.0 * f64::EPSILON * kappa + distance;
             let rel = (omega - reference).abs() / reference;
             worst_world = worst_world.max(rel / tol);
             assert!(

@@ -4,7 +4,7 @@
 //! samples back to u; f32 agrees with f64 on hard cases.
 
 use glam::DVec2;
-use lambert_tests::{conditioning, direction_cases, edge_values};
+use lambert_tests::{angular_scale, conditioning, direction_cases, edge_values};
 use lambert_validate::catalog::{DirectionWarpSpec, Precision};
 
 fn eps(p: Precision) -> f64 {
@@ -79,21 +79,6 @@ fn is_area_sampled(spec: &DirectionWarpSpec) -> bool {
             | DirectionWarpSpec::DiskArea { .. }
             | DirectionWarpSpec::ParallelogramArea { .. }
     )
-}
-
-/// sin of the angular radius of the warp's support, which bounds how
-/// precisely a direction (stored with absolute error ~ε per component) can
-/// be located inside it.
-fn angular_scale(spec: &DirectionWarpSpec) -> f64 {
-    match spec.bounding_cap() {
-        Some(cap) if cap.axis.x != 0.0 || cap.axis.y != 0.0 => {
-            let h = cap.one_minus_cos;
-            (h * (2.0 - h)).sqrt().max(1e-300)
-        }
-        // Supports about ±z: directions near the axis are stored with
-        // relative precision in x and y, so no scale is lost.
-        _ => 1.0,
-    }
 }
 
 #[test]

@@ -186,3 +186,76 @@ fn bad_input_exits_2_naming_the_field() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("shard"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `git` run in the workspace root with `args`; `None` when git or the
+/// checkout is not there (a crate built from a source archive).
+fn git(args: &[&str]) -> Option<Output> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = Command::new("git")
+        .arg("-C")
+        .arg(&root)
+        .args(args)
+        .output()
+        .ok()?;
+    let inside = Command::new("git")
+        .arg("-C")
+        .arg(&root)
+        .args(["rev-parse", "--is-inside-work-tree"])
+        .output()
+        .ok()?;
+    (inside.status.success()).then_some(out)
+}
+
+/// A newcomer's first command, `cargo run --release` in the repository's
+/// root, runs the built-in study into its default folder: that folder must
+/// hold no tracked file and be ignored by git, so the run leaves
+/// `git status` clean (the committed reference output lives in
+/// `notebooks-data/builtin/`, which only `--out notebooks-data/builtin`
+/// writes). And the CLI's default is that folder: a small study run without
+/// `--out` in a scratch directory lands in `notebooks-data/runs/<name>/`.
+#[test]
+fn the_default_output_folder_is_untracked_and_ignored() {
+    use lambert_study::StudyConfig;
+    let default = StudyConfig::builtin().default_out_dir();
+    assert_eq!(default, Path::new("notebooks-data/runs/builtin"));
+    assert_ne!(default, Path::new("notebooks-data/builtin"));
+    let path = default.to_str().unwrap();
+    match git(&["ls-files", "--", path]) {
+        None => eprintln!("not a git checkout: the tracked-path check is skipped"),
+        Some(tracked) => {
+            assert!(tracked.status.success());
+            assert!(
+                tracked.stdout.is_empty(),
+                "tracked files under {path}: {}",
+                String::from_utf8_lossy(&tracked.stdout)
+            );
+            let ignored = git(&["check-ignore", "-q", &format!("{path}/results.csv")]).unwrap();
+            assert!(ignored.status.success(), "{path} is not ignored by git");
+            // The committed reference is tracked, and not ignored.
+            let reference = git(&["ls-files", "--", "notebooks-data/builtin/results.csv"]).unwrap();
+            assert!(!reference.stdout.is_empty(), "the reference is tracked");
+        }
+    }
+
+    let dir = temp_dir("default_out");
+    let study = dir.join("study.toml");
+    std::fs::write(
+        &study,
+        "name = \"t\"\nscenes = [\"builtin:uniform-sky\"]\nstrategies = [\"light\"]\n\
+         sequences = [\"independent\"]\nn_min_log2 = 5\nn_max_log2 = 6\nreplicates = 2\n",
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_lambert"))
+        .current_dir(&dir)
+        .args(["study", study.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(dir.join("notebooks-data/runs/t/results.csv").is_file());
+    assert!(!dir.join("notebooks-data/t").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -40,6 +40,7 @@
 
 pub mod precision;
 
+mod clip;
 mod disk;
 mod error;
 mod frame;
@@ -57,6 +58,7 @@ pub use error::GeometryError;
 /// The public items of one precision, re-exported once.
 macro_rules! public_api {
     ($p:ident) => {
+        pub use crate::clip::$p::clip_to_half_space;
         pub use crate::disk::$p::Disk;
         pub use crate::frame::$p::Frame;
         pub use crate::parallelogram::$p::Parallelogram;

@@ -78,11 +78,30 @@ macro_rules! polygon_impl {
                 // (exact), so that no product of coordinates overflows or
                 // underflows: a polygon 1e-300 or 1e300 in size is checked
                 // like one of size 1.
+                // The coordinates are divided by a power of two so that no
+                // product in Newell's sums overflows. A polygon whose extent
+                // is below the fourth root of the smallest normal number
+                // relative to its coordinates (1e-77 in f64: a triangle of
+                // size 5 at 1e81) would still underflow the squares of
+                // those products when the normal is normalised: it is
+                // then taken relative to its first vertex, with the extent
+                // scaled to ~1 by a second power of two.
                 let largest = vertices
                     .iter()
                     .fold(0.0, |m: Real, v| m.max(v.abs().max_element()));
-                let k = power_of_two_above(largest);
-                let scaled: Vec<V3> = vertices.iter().map(|&v| v / k).collect();
+                let k1 = power_of_two_above(largest);
+                let absolute: Vec<V3> = vertices.iter().map(|&v| v / k1).collect();
+                let spread = absolute
+                    .iter()
+                    .fold(0.0, |m: Real, &v| m.max((v - absolute[0]).abs().max_element()));
+                let (scaled, k) = if spread >= Real::MIN_POSITIVE.sqrt().sqrt() {
+                    (absolute, k1)
+                } else {
+                    let k2 = power_of_two_above(spread);
+                    let origin = absolute[0];
+                    let relative = absolute.iter().map(|&v| (v - origin) / k2).collect();
+                    (relative, k1 * k2)
+                };
                 let n = vertices.len();
                 let mut newell = V3::ZERO;
                 for i in 0..n {
@@ -281,6 +300,13 @@ mod tests {
         assert_eq!((tiny.normal(), tiny.area()), (DVec3::Z, 0.0));
         let huge = ConvexPolygon::new(square_vertices().map(|v| v * 1e300).to_vec()).unwrap();
         assert_eq!((huge.normal(), huge.area()), (DVec3::Z, f64::INFINITY));
+        // Small far from the origin: a triangle of size 5 at y = −2.8e81
+        // (Newell's products would underflow without the translation).
+        let far: Vec<DVec3> = [DVec3::ZERO, DVec3::X * 5.0, DVec3::Z * 5.0]
+            .map(|v| v + DVec3::new(0.0, -2.8e81, 0.0))
+            .to_vec();
+        let p = ConvexPolygon::new(far).unwrap();
+        assert_eq!(p.normal(), -DVec3::Y);
         let e = ConvexPolygon::new(vec![DVec3::ZERO, DVec3::X]).unwrap_err();
         assert_eq!(e.to_string(), "vertices: needs at least 3 vertices, got 2");
     }

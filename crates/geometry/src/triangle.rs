@@ -59,8 +59,15 @@ macro_rules! triangle_impl {
                 validate::finite3("v2", wide3(v2))?;
                 // The cross product of the edges divided by a power of two
                 // (exact), so that it neither overflows nor underflows.
-                let k = power_of_two_above(v0.abs().max(v1.abs()).max(v2.abs()).max_element());
-                let n = (v1 / k - v0 / k).cross(v2 / k - v0 / k);
+                // The edges are divided by a power of two twice: first the
+                // vertices, so that the differences cannot overflow, then
+                // the edges, so that their cross product neither overflows
+                // nor underflows (a triangle of size 5 at 1e160).
+                let k1 = power_of_two_above(v0.abs().max(v1.abs()).max(v2.abs()).max_element());
+                let (e1, e2) = (v1 / k1 - v0 / k1, v2 / k1 - v0 / k1);
+                let k2 = power_of_two_above(e1.abs().max(e2.abs()).max_element());
+                let k = k1 * k2;
+                let n = (e1 / k2).cross(e2 / k2);
                 let len = n.length();
                 if !(len > 0.0) {
                     return Err(GeometryError::Shape {
@@ -264,6 +271,9 @@ mod tests {
         let tiny = Triangle::new(DVec3::ZERO, DVec3::X * 1e-300, DVec3::Y * 1e-300).unwrap();
         assert_eq!(tiny.normal(), DVec3::Z);
         assert_eq!(tiny.area(), 0.0, "its area underflows, and says so");
+        let o = DVec3::new(0.0, 1e160, 0.0);
+        let far = Triangle::new(o, o + DVec3::X * 5.0, o + DVec3::Z * 5.0).unwrap();
+        assert_eq!(far.normal(), -DVec3::Y);
         let e = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::new(f64::NAN, 0.0, 0.0));
         assert_eq!(e.unwrap_err().field(), "v2");
     }

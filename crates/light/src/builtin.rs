@@ -3,7 +3,9 @@
 //!
 //! Every scene has a closed form ([`crate::analytic`]); together they cover
 //! every emitter kind, both delta lights, a cap crossing the horizon, a
-//! sphere straddling it, tiny and large disks, and a grazing rectangle.
+//! sphere straddling it, tiny and large disks, a grazing rectangle, and a
+//! receiver close under a disk, where area sampling is heavy-tailed (listed
+//! last, so the rows of studies made before it keep their indices).
 
 use glam::DVec3;
 
@@ -168,6 +170,18 @@ pub fn builtin_scenes() -> Vec<NamedScene> {
                 ),
                 Emitter::Sky(Sky::new(0.5).expect("valid")),
             ],
+        ),
+        scene(
+            "disk-close-under",
+            // A unit disk 0.01 above the receiver, off-centre by 0.3: area
+            // sampling's values reach L·A/h², carried by a core of the
+            // disk that a sample reaches with probability ~3e-4 (heavy
+            // tail, infinite variance in the limit h → 0).
+            up(),
+            vec![Emitter::Disk(
+                DiskLight::new(DVec3::new(0.3, 0.0, 0.01), -DVec3::Z, 1.0, 1.0, false)
+                    .expect("valid"),
+            )],
         ),
     ]
 }

@@ -11,9 +11,11 @@
 //! an estimate that is all zeros, with a standard error of zero.)
 //!
 //! The cut is one step of Sutherland–Hodgman clipping (Sutherland & Hodgman,
-//! "Reentrant polygon clipping", CACM 17(1), 1974): with dᵢ = n·(vᵢ − p),
-//! keep every vertex with dᵢ ≥ 0 and insert, on every edge whose ends lie
-//! strictly on opposite sides, the crossing vᵢ + (vⱼ − vᵢ)·dᵢ/(dᵢ − dⱼ).
+//! "Reentrant polygon clipping", CACM 17(1), 1974; `lambert_geometry`'s
+//! `clip_to_half_space`): with
+//! dᵢ = n·(vᵢ − p), keep every vertex with dᵢ ≥ 0 and insert, on every edge
+//! whose ends lie strictly on opposite sides, the crossing
+//! vᵢ + (vⱼ − vᵢ)·dᵢ/(dᵢ − dⱼ).
 //! The vertices go into a fixed-capacity array on the stack, which is why
 //! polygon lights have at most [`MAX_POLYGON_VERTICES`] vertices (checked
 //! when the light's sampler is built).
@@ -27,6 +29,7 @@ macro_rules! horizon_clip_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
         use super::MAX_POLYGON_VERTICES;
         use lambert_geometry::precision::$p::V3;
+        use lambert_geometry::$p::clip_to_half_space;
 
         /// Where a light's vertices lie relative to a shading point's
         /// horizon plane n·(x − p) = 0.
@@ -81,17 +84,7 @@ macro_rules! horizon_clip_impl {
                     vertices: [V3::ZERO; MAX_POLYGON_VERTICES + 1],
                     len: 0,
                 };
-                let n = vertices.len();
-                for i in 0..n {
-                    let (a, b) = (vertices[i], vertices[(i + 1) % n]);
-                    let (da, db) = (normal.dot(a - reference), normal.dot(b - reference));
-                    if da >= 0.0 {
-                        out.push(a);
-                    }
-                    if (da > 0.0 && db < 0.0) || (da < 0.0 && db > 0.0) {
-                        out.push(a + (b - a) * (da / (da - db)));
-                    }
-                }
+                clip_to_half_space(reference, normal, vertices, |v| out.push(v));
                 out
             }
 

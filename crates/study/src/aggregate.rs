@@ -47,7 +47,10 @@ pub struct RowStats {
     /// Replicates whose interval was not the CLT one (it came with a
     /// warning: few or no hits, few misses, a heavy tail).
     pub warnings: usize,
-    /// The root mean square of the replicates' reported standard errors.
+    /// The median of the replicates' reported standard errors: the typical
+    /// replicate's claim (robust to the one replicate of a heavy-tailed
+    /// estimator that reached the tail and reports a huge σ while the
+    /// others report small ones).
     pub std_error: f64,
     /// The sample standard deviation of the M estimates (`None` for
     /// M = 1): what the standard error should match.
@@ -92,12 +95,7 @@ pub fn aggregate(truth: Option<f64>, replicates: &[ReplicateResult]) -> RowStats
         .iter()
         .filter(|r| r.interval != IntervalKind::CentralLimit)
         .count();
-    let std_error = (replicates
-        .iter()
-        .map(|r| r.std_error * r.std_error)
-        .sum::<f64>()
-        / m)
-        .sqrt();
+    let std_error = median(&replicates.iter().map(|r| r.std_error).collect::<Vec<_>>());
     let replicate_sd = (replicates.len() > 1).then(|| {
         let ss: f64 = replicates
             .iter()

@@ -62,7 +62,8 @@ impl StudyScene {
 /// A study's configuration.
 #[derive(Clone, Debug)]
 pub struct StudyConfig {
-    /// The study's name (the default output folder `notebooks-data/<name>`).
+    /// The study's name (the default output folder is
+    /// [`StudyConfig::default_out_dir`], `notebooks-data/runs/<name>`).
     pub name: String,
     /// Scenes, in order.
     pub scenes: Vec<StudyScene>,
@@ -98,6 +99,10 @@ pub const BUILTIN_STRATEGIES: [Strategy; 8] = Strategy::ALL;
 /// The built-in study's seed.
 pub const BUILTIN_SEED: u64 = 20261122;
 
+/// The folder, relative to the working directory, under which studies are
+/// written by default ([`StudyConfig::default_out_dir`]); git-ignored.
+pub const RUNS_DIR: &str = "notebooks-data/runs";
+
 fn all_builtin_scenes() -> Vec<StudyScene> {
     builtin_scenes()
         .into_iter()
@@ -123,6 +128,19 @@ impl StudyConfig {
             replicates: 8,
             seed: BUILTIN_SEED,
         }
+    }
+
+    /// Where `lambert study` writes this study when no `--out` is given,
+    /// relative to the working directory: [`RUNS_DIR`]`/<name>`.
+    ///
+    /// Not `notebooks-data/<name>`: the repository keeps the built-in
+    /// study's reference output in `notebooks-data/builtin/`, and its timing
+    /// columns and plots change on every run, so a newcomer's first
+    /// `cargo run --release` would leave the checkout modified. Runs go to
+    /// `notebooks-data/runs/`, which the repository ignores; the reference
+    /// is refreshed on purpose with `lambert study --out notebooks-data/builtin`.
+    pub fn default_out_dir(&self) -> std::path::PathBuf {
+        Path::new(RUNS_DIR).join(&self.name)
     }
 
     /// The quick study (`--quick`, run by CI): as the default but N = 2^5 …

@@ -25,7 +25,7 @@ pub mod run;
 pub mod summary;
 
 pub use aggregate::{aggregate, ReplicateResult, RowStats};
-pub use config::{StudyConfig, StudyError, StudyScene};
+pub use config::{StudyConfig, StudyError, StudyScene, RUNS_DIR};
 pub use fit::{fit_loglog, LogLogFit};
 pub use plan::{plan, replicate_seed, RowKey, Shard};
 pub use results::{read_results, ResultRow, ResultsWriter, CSV_HEADER};

@@ -58,33 +58,40 @@ pub const SPREAD_FAMILY_ALPHA: f64 = 0.01;
 
 /// The two-sided band, at level 1 − `alpha`, of the ratio s/σ of a row's
 /// replicate spread s (the sample standard deviation of its M estimates)
-/// to its reported standard error σ (the root mean square of the M
-/// replicates' σᵣ), when the σᵣ are honest and the estimates normal:
-/// s²/σ² ~ F(M − 1, ν), ν = ∞ for independent samples (σᵣ from N samples:
-/// χ²(M − 1)/(M − 1)) and ν = M(R − 1) for randomized QMC (each σᵣ from R =
-/// 16 replicates). A ratio above the band means the reported σ is too
-/// small: the signature of a heavy tail (area sampling near an emitter,
-/// whose infinite-variance limit the sample variance cannot show) or of
-/// rare events some replicates saw and others did not. Below it, σ
-/// overstates the error. `None` for M < 2.
-pub fn spread_band(replicates: usize, sequence: SequenceKind, alpha: f64) -> Option<(f64, f64)> {
+/// to its reported standard error σ (the median of the M replicates' σᵣ),
+/// when the σᵣ are honest and the estimates normal: s²/σ² ~ F(M − 1, ν),
+/// with ν the degrees of freedom of one σᵣ — N − 1 for independent samples
+/// (σᵣ from N samples), R − 1 = 15 for randomized QMC (from R = 16
+/// replicates). Taking the median of M such σᵣ as if it had the precision
+/// of one makes the band conservative. A ratio above the band means the
+/// typical reported σ is too small: the signature of a heavy tail (area
+/// sampling near an emitter, whose infinite-variance limit the sample
+/// variance cannot show) or of rare events that some replicates saw and
+/// others did not. Below it, σ overstates the error. `None` for M < 2.
+pub fn spread_band(
+    replicates: usize,
+    sequence: SequenceKind,
+    n: u64,
+    alpha: f64,
+) -> Option<(f64, f64)> {
     if replicates < 2 {
         return None;
     }
     let d1 = (replicates - 1) as f64;
-    let (lo, hi) = match sequence {
-        SequenceKind::Independent => {
-            let chi = ChiSquared::new(d1).ok()?;
-            (
-                chi.inverse_cdf(alpha / 2.0) / d1,
-                chi.inverse_cdf(1.0 - alpha / 2.0) / d1,
-            )
-        }
-        _ => {
-            let d2 = replicates as f64 * (RQMC_REPLICATES - 1) as f64;
-            let f = FisherSnedecor::new(d1, d2).ok()?;
-            (f.inverse_cdf(alpha / 2.0), f.inverse_cdf(1.0 - alpha / 2.0))
-        }
+    let d2 = match sequence {
+        SequenceKind::Independent => n.saturating_sub(1).max(1) as f64,
+        _ => (RQMC_REPLICATES - 1) as f64,
+    };
+    let (lo, hi) = if d2 > 1e6 {
+        // F(d1, ∞) = χ²(d1)/d1 (statrs' F quantile loses precision there).
+        let chi = ChiSquared::new(d1).ok()?;
+        (
+            chi.inverse_cdf(alpha / 2.0) / d1,
+            chi.inverse_cdf(1.0 - alpha / 2.0) / d1,
+        )
+    } else {
+        let f = FisherSnedecor::new(d1, d2).ok()?;
+        (f.inverse_cdf(alpha / 2.0), f.inverse_cdf(1.0 - alpha / 2.0))
     };
     Some((lo.sqrt(), hi.sqrt()))
 }
@@ -100,7 +107,7 @@ fn spread_flag(row: &ResultRow, alpha: f64) -> Option<f64> {
         return None;
     }
     let ratio = sd / s.std_error;
-    let (lo, hi) = spread_band(s.replicates, row.sequence, alpha)?;
+    let (lo, hi) = spread_band(s.replicates, row.sequence, row.n(), alpha)?;
     let at_floor = s.std_error <= mean_rounding_floor(s.mean_estimate, row.n()) * 1.000_001;
     (ratio > hi || (ratio < lo && !at_floor)).then_some(ratio)
 }
@@ -188,11 +195,25 @@ fn sidak(alpha: f64, k: usize) -> f64 {
     -((1.0 - alpha).ln() / k.max(1) as f64).exp_m1()
 }
 
-/// "2^5, 2^6 (3 of 8), …" for the rows of `items`.
+/// The rows of `items` as "2^5…2^9 (8 of 8), 2^11 (3 of 8)": runs of
+/// consecutive log₂ N with the same detail are joined.
 fn exponents<T>(items: &[(u32, T)], detail: impl Fn(&T) -> String) -> String {
-    items
-        .iter()
-        .map(|(k, x)| format!("2^{k}{}", detail(x)))
+    let mut runs: Vec<(u32, u32, String)> = Vec::new();
+    for (k, x) in items {
+        let d = detail(x);
+        match runs.last_mut() {
+            Some((_, last, prev)) if *last + 1 == *k && *prev == d => *last = *k,
+            _ => runs.push((*k, *k, d)),
+        }
+    }
+    runs.iter()
+        .map(|(a, b, d)| {
+            if a == b {
+                format!("2^{a}{d}")
+            } else {
+                format!("2^{a}…2^{b}{d}")
+            }
+        })
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -242,10 +263,10 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
          intervals are not the central-limit ones, because a part of the estimate had fewer \
          than 30 hits (or misses), or area sampling's heavy-tailed core was out of reach; \
          their intervals come from rare-event bounds and say so. **σ vs spread** lists the N \
-         at which the spread of the replicates disagrees with their reported standard error \
-         (outside its χ² or F band at a {SPREAD_FAMILY_ALPHA} family-wise level, Šidák over \
-         the rows): a ratio far above 1 is the mark of a heavy tail or of rare events, where \
-         the sample variance cannot be trusted.\n"
+         at which the spread of the replicates disagrees with their median reported standard \
+         error (outside its F band at a {SPREAD_FAMILY_ALPHA} family-wise level, Šidák over \
+         the rows), with the ratio spread/σ: a ratio far above 1 is the mark of a heavy tail \
+         or of rare events, where the sample variance cannot be trusted.\n"
     );
     let mut scenes: Vec<&str> = Vec::new();
     for g in &groups {
@@ -308,15 +329,16 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
         let mut notes = String::new();
         for g in &gs {
             if !g.warning_rows.is_empty() {
+                let m = rows
+                    .iter()
+                    .find(|r| r.scene == g.scene)
+                    .map_or(0, |r| r.stats.replicates);
                 let _ = writeln!(
                     notes,
-                    "- **few hits**: {} × {} at N = {} (replicates with a warning, of {}).",
+                    "- **few hits**: {} × {} at N = {} (replicates with rare-event intervals).",
                     g.strategy,
                     g.sequence,
-                    exponents(&g.warning_rows, |w| format!(" ({w})")),
-                    rows.iter()
-                        .find(|r| r.scene == g.scene)
-                        .map_or(0, |r| r.stats.replicates)
+                    exponents(&g.warning_rows, |w| format!(" ({w} of {m})")),
                 );
             }
             if !g.spread_flags.is_empty() {
@@ -423,7 +445,7 @@ mod tests {
         assert_eq!(g[0].spread_flags[0].0, 12);
         let md = summary_markdown("t", &rows);
         assert!(
-            md.contains("- **few hits**: area × independent at N = 2^11 (3)"),
+            md.contains("- **few hits**: area × independent at N = 2^11 (3 of 4)"),
             "{md}"
         );
         assert!(
@@ -432,19 +454,27 @@ mod tests {
         );
     }
 
-    /// The band of s/σ for M = 8 independent replicates at α = 0.01:
-    /// √(χ²₀.₀₀₅(7)/7) = √(0.9893/7) and √(χ²₀.₉₉₅(7)/7) = √(20.278/7)
-    /// (tables, to 1e-3).
     #[test]
-    fn spread_band_matches_chi_square_tables() {
-        let (lo, hi) = spread_band(8, SequenceKind::Independent, 0.01).unwrap();
+    fn runs_of_exponents_are_joined() {
+        let items = [(5, 8), (6, 8), (7, 8), (9, 8), (10, 3), (11, 3)];
+        assert_eq!(
+            exponents(&items, |x| format!(" ({x})")),
+            "2^5…2^7 (8), 2^9 (8), 2^10…2^11 (3)"
+        );
+    }
+
+    /// The band of s/σ for M = 8 independent replicates of 2²⁰ samples at
+    /// α = 0.01: √(χ²₀.₀₀₅(7)/7) = √(0.9893/7) and √(χ²₀.₉₉₅(7)/7) =
+    /// √(20.278/7) (tables, to 1e-3; F(7, 2²⁰ − 1) is χ²(7)/7 to ~1e-5).
+    /// The randomized-QMC band, F(7, 15), is wider: F₀.₉₉₅(7, 15) = 4.85.
+    #[test]
+    fn spread_band_matches_the_tables() {
+        let (lo, hi) = spread_band(8, SequenceKind::Independent, 1 << 20, 0.01).unwrap();
         assert!((lo - (0.9893f64 / 7.0).sqrt()).abs() < 1e-3, "{lo}");
         assert!((hi - (20.278f64 / 7.0).sqrt()).abs() < 1e-3, "{hi}");
-        let (lo_q, hi_q) = spread_band(8, SequenceKind::Sobol, 0.01).unwrap();
-        assert!(
-            lo_q < lo && hi_q > hi,
-            "F band wider than χ²: {lo_q} {hi_q}"
-        );
-        assert_eq!(spread_band(1, SequenceKind::Sobol, 0.01), None);
+        let (lo_q, hi_q) = spread_band(8, SequenceKind::Sobol, 1 << 20, 0.01).unwrap();
+        assert!((hi_q - 4.85f64.sqrt()).abs() < 1e-2, "{hi_q}");
+        assert!(lo_q < lo && hi_q > hi, "{lo_q} {hi_q}");
+        assert_eq!(spread_band(1, SequenceKind::Sobol, 1 << 20, 0.01), None);
     }
 }

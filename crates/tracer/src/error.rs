@@ -62,7 +62,10 @@ impl From<EstimateError> for TracerError {
     fn from(e: EstimateError) -> Self {
         match e {
             EstimateError::Config { field, problem } => TracerError::new(field, problem),
-            EstimateError::Statistics(s) => TracerError::new("estimate", s.to_string()),
+            EstimateError::NonFiniteSample { emitter, .. } => {
+                TracerError::new(format!("emitters[{emitter}]"), e.to_string())
+            }
+            other => TracerError::new("estimate", other.to_string()),
         }
     }
 }

@@ -32,8 +32,11 @@
 //! cells pooled into one cell.
 //!
 //! The pieces, one per file: [`binning`] (the sphere and cap grids),
-//! [`quadrature`] (adaptive per-cell integration) and [`chi_square`] (the
-//! test and its outcome).
+//! [`quadrature`] (adaptive integration over a rectangle),
+//! [`cell_integrals`] (a density integrated over every cell of a grid),
+//! [`chi_square`] (the test and its outcome) and [`power`] (the probability
+//! that the test rejects a given departure, for stating a negative
+//! control's power).
 //!
 //! ```
 //! use glam::DVec3;
@@ -60,12 +63,16 @@
 
 pub mod binning;
 pub mod catalog;
+pub mod cell_integrals;
 pub mod chi_square;
+pub mod power;
 pub mod quadrature;
 pub mod warp_suite;
 
 pub use binning::{Binning, Cell, Grid};
+pub use cell_integrals::{integrate_cells, CellIntegrals, Smoothness};
 pub use chi_square::{sidak_level, ChiSquareOutcome, ChiSquareTest, ImmediateFailure};
+pub use power::{chi_square_power, critical_value, noncentral_chi_square_sf, noncentrality};
 pub use quadrature::{integrate_rectangle, Integral};
 
 use std::fmt;

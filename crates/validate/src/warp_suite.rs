@@ -16,7 +16,7 @@ use crate::catalog::{DirectionWarp, DirectionWarpSpec, Precision};
 use glam::DVec3;
 use lambert_sampling::sequence::{Independent, SampleSequence};
 
-use crate::{Binning, ChiSquareOutcome, ChiSquareTest};
+use crate::{Binning, ChiSquareOutcome, ChiSquareTest, Integral};
 
 /// A named warp configuration that the suite exercises.
 #[derive(Clone, Debug)]
@@ -340,6 +340,120 @@ pub struct Partition {
     /// when it is outside the support by more than rounding (see
     /// [`partition_for`]).
     pub locate: Box<dyn Fn(DVec3) -> Option<usize> + Sync>,
+    /// The shape of each cell on the light's plane (same order as
+    /// `probabilities`), to integrate a density over it
+    /// ([`PartitionCell::integrate_solid_angle`]).
+    pub cells: Vec<PartitionCell>,
+}
+
+/// The planar shape of one partition cell; the cell of directions is the
+/// shape seen from the origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PartitionCell {
+    /// The triangle with these vertices.
+    Triangle([DVec3; 3]),
+    /// The parallelogram `corner + a·edge0 + b·edge1`, a, b ∈ [0, 1].
+    Parallelogram {
+        /// A corner.
+        corner: DVec3,
+        /// The first edge from it.
+        edge0: DVec3,
+        /// The second edge from it.
+        edge1: DVec3,
+    },
+    /// The part of a disk with (r/R)² ∈ [s₀, s₁] and polar angle φ ∈ [φ₀, φ₁]
+    /// about `center` in the orthonormal in-plane axes `x`, `y`.
+    RingSector {
+        /// The disk's center.
+        center: DVec3,
+        /// In-plane axis at φ = 0.
+        x: DVec3,
+        /// In-plane axis at φ = π/2.
+        y: DVec3,
+        /// The disk's radius R.
+        radius: f64,
+        /// The range of (r/R)².
+        rho2: (f64, f64),
+        /// The range of φ, radians.
+        phi: (f64, f64),
+    },
+}
+
+impl PartitionCell {
+    /// The point at parameters (a, b) ∈ [0, 1]², and the area element
+    /// dA/(da db) there: a Duffy map for triangles (p = A + a(B − A) +
+    /// ab(C − B), dA = a·|(B − A) × (C − B)| da db, smooth on the square),
+    /// the affine map for parallelograms, and (r/R)², φ linear in a, b for
+    /// ring sectors (dA = ½R² ds dφ).
+    fn point(&self, a: f64, b: f64) -> (DVec3, f64) {
+        match *self {
+            PartitionCell::Triangle([p0, p1, p2]) => {
+                let e = p1 - p0;
+                let f = p2 - p1;
+                (p0 + e * a + f * (a * b), a * e.cross(f).length())
+            }
+            PartitionCell::Parallelogram {
+                corner,
+                edge0,
+                edge1,
+            } => (corner + edge0 * a + edge1 * b, edge0.cross(edge1).length()),
+            PartitionCell::RingSector {
+                center,
+                x,
+                y,
+                radius,
+                rho2: (s0, s1),
+                phi: (f0, f1),
+            } => {
+                let s = s0 + (s1 - s0) * a;
+                let phi = f0 + (f1 - f0) * b;
+                let r = radius * s.sqrt();
+                let (sin, cos) = phi.sin_cos();
+                (
+                    center + (x * cos + y * sin) * r,
+                    0.5 * radius * radius * (s1 - s0) * (f1 - f0),
+                )
+            }
+        }
+    }
+
+    /// The unit normal of the cell's plane (either orientation).
+    fn normal(&self) -> DVec3 {
+        match *self {
+            PartitionCell::Triangle([p0, p1, p2]) => (p1 - p0).cross(p2 - p0).normalize(),
+            PartitionCell::Parallelogram { edge0, edge1, .. } => edge0.cross(edge1).normalize(),
+            PartitionCell::RingSector { x, y, .. } => x.cross(y).normalize(),
+        }
+    }
+
+    /// ∫ f(ω) dω over the directions in which the origin sees the cell,
+    /// computed on the plane as ∫ f(p/|p|) |n·p|/|p|³ dA (dω = cos θₗ dA/d²)
+    /// by the adaptive Gauss quadrature of [`crate::quadrature`] for smooth
+    /// integrands, to the relative error `relative_tolerance`, with at most
+    /// `max_splits` splits. `f` is evaluated only at interior points of the
+    /// cell, so a density smooth on the support (uniform, or uniform in area
+    /// converted to solid angle) is integrated without meeting its edges.
+    pub fn integrate_solid_angle(
+        &self,
+        mut f: impl FnMut(DVec3) -> f64,
+        relative_tolerance: f64,
+        max_splits: usize,
+    ) -> Integral {
+        let n = self.normal();
+        let integrand = |a: f64, b: f64| {
+            let (p, jacobian) = self.point(a, b);
+            let d2 = p.length_squared();
+            let d = d2.sqrt();
+            f(p / d) * n.dot(p).abs() / (d2 * d) * jacobian
+        };
+        crate::quadrature::integrate_smooth(
+            integrand,
+            (0.0, 1.0),
+            (0.0, 1.0),
+            |value| relative_tolerance * value.abs() + f64::MIN_POSITIVE,
+            max_splits,
+        )
+    }
 }
 
 /// Subdivisions per side of the partitions (16² = 256 cells, ≈ 3900
@@ -379,17 +493,18 @@ fn triangle_partition(
     // lower(i, j) for i + j ≤ k − 1 and upper(i, j) for i + j ≤ k − 2.
     let mut index = vec![[usize::MAX; 2]; k * k];
     let mut weights = Vec::new();
+    let mut cells = Vec::new();
     for i in 0..k {
         for j in 0..k - i {
             index[i * k + j][0] = weights.len();
-            weights.push(weight(point(i, j), point(i + 1, j), point(i, j + 1)));
+            let lower = [point(i, j), point(i + 1, j), point(i, j + 1)];
+            weights.push(weight(lower[0], lower[1], lower[2]));
+            cells.push(PartitionCell::Triangle(lower));
             if i + j + 2 <= k {
                 index[i * k + j][1] = weights.len();
-                weights.push(weight(
-                    point(i + 1, j),
-                    point(i + 1, j + 1),
-                    point(i, j + 1),
-                ));
+                let upper = [point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)];
+                weights.push(weight(upper[0], upper[1], upper[2]));
+                cells.push(PartitionCell::Triangle(upper));
             }
         }
     }
@@ -415,6 +530,7 @@ fn triangle_partition(
     Partition {
         probabilities: weights.iter().map(|w| w / total).collect(),
         locate: Box::new(locate),
+        cells,
     }
 }
 
@@ -432,6 +548,7 @@ fn parallelogram_partition(
     let point =
         |i: usize, j: usize| corner + e0 * (i as f64 / k as f64) + e1 * (j as f64 / k as f64);
     let mut weights = Vec::with_capacity(k * k);
+    let mut cells = Vec::with_capacity(k * k);
     for i in 0..k {
         for j in 0..k {
             weights.push(weight([
@@ -440,6 +557,11 @@ fn parallelogram_partition(
                 point(i + 1, j + 1),
                 point(i, j + 1),
             ]));
+            cells.push(PartitionCell::Parallelogram {
+                corner: point(i, j),
+                edge0: e0 / k as f64,
+                edge1: e1 / k as f64,
+            });
         }
     }
     let total: f64 = weights.iter().sum();
@@ -457,6 +579,7 @@ fn parallelogram_partition(
     Partition {
         probabilities: weights.iter().map(|w| w / total).collect(),
         locate: Box::new(locate),
+        cells,
     }
 }
 
@@ -544,9 +667,24 @@ pub fn partition_for(spec: &DirectionWarpSpec, precision: Precision) -> Option<P
                 let sector = ((phi / std::f64::consts::TAU * k as f64) as usize).min(k - 1);
                 Some(ring * k + sector)
             };
+            let cells = (0..k * k)
+                .map(|cell| {
+                    let (ring, sector) = (cell / k, cell % k);
+                    let step = std::f64::consts::TAU / k as f64;
+                    PartitionCell::RingSector {
+                        center: c,
+                        x,
+                        y,
+                        radius: r,
+                        rho2: (ring as f64 / k as f64, (ring + 1) as f64 / k as f64),
+                        phi: (sector as f64 * step, (sector + 1) as f64 * step),
+                    }
+                })
+                .collect();
             Some(Partition {
                 probabilities: vec![1.0 / (k * k) as f64; k * k],
                 locate: Box::new(locate),
+                cells,
             })
         }
         _ => None,

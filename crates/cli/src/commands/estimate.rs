@@ -152,7 +152,9 @@ pub fn checked_estimate(
         Err(EstimateError::Config { field, problem }) => {
             return Err(format!("--{field}: {problem}"))
         }
-        Err(EstimateError::Statistics(e)) => format!("the estimator reported: {e}"),
+        // Names the emitter and the sample already.
+        Err(e @ EstimateError::NonFiniteSample { .. }) => return Err(format!("{origin}: {e}")),
+        Err(e) => format!("the estimator reported: {e}"),
         Ok(r) => match non_finite_quantity(&r) {
             None => return Ok(r),
             Some(q) => q,

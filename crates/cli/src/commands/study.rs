@@ -1,5 +1,7 @@
 //! `lambert study`: a convergence study (the built-in one by default) into
-//! `notebooks-data/<name>/`: `results.csv`, `summary.md` and plots.
+//! `notebooks-data/runs/<name>/` (git-ignored; the committed reference of
+//! the built-in study in `notebooks-data/builtin/` is only written with
+//! `--out notebooks-data/builtin`): `results.csv`, `summary.md` and plots.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -17,7 +19,8 @@ pub struct StudyOptions {
     /// The quick built-in study (N up to 2^14; what CI runs).
     #[arg(long, conflicts_with = "study")]
     pub quick: bool,
-    /// Output folder (default: `notebooks-data/<study name>`).
+    /// Output folder (default: `notebooks-data/runs/<study name>`, which git
+    /// ignores; the committed reference output is `notebooks-data/builtin`).
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Run only slice K of N (rows with index % N == K), e.g. 0/4; combine
@@ -43,7 +46,7 @@ pub fn run(options: &StudyOptions) -> Result<(), String> {
     let out = options
         .out
         .clone()
-        .unwrap_or_else(|| Path::new("notebooks-data").join(&config.name));
+        .unwrap_or_else(|| config.default_out_dir());
     let rows_total = plan(&config).len();
     if !options.quiet {
         println!(

@@ -322,16 +322,19 @@ impl Estimate {
     }
 
     /// The compensated sum Σx (0 for n = 0); `None` after a non-finite
-    /// sample or an overflow.
+    /// sample or if the sum overflowed.
     pub fn sum(&self) -> Option<f64> {
-        self.is_finite().then(|| self.sum.sum())
+        let s = self.sum.sum();
+        (self.non_finite == 0 && s.is_finite()).then_some(s)
     }
 
     /// The sample mean m = Σx / n, from the compensated sum (module docs).
-    /// `None` if n = 0, after a non-finite sample, or on overflow.
+    /// `None` if n = 0, after a non-finite sample, or if the sum
+    /// overflowed. (An overflow of M₂ alone, from samples above ~1e154,
+    /// leaves the mean defined and only the variance `None`.)
     pub fn mean(&self) -> Option<f64> {
         let m = self.mean_hi + self.mean_lo;
-        (self.n > 0 && self.is_finite() && m.is_finite()).then_some(m)
+        (self.n > 0 && self.sum().is_some() && m.is_finite()).then_some(m)
     }
 
     /// The sample (unbiased) variance s² = M₂ / (n − 1), M₂ = Σ(x − m)²

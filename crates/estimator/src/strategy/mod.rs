@@ -83,14 +83,16 @@ pub enum Heuristic {
 
 impl Heuristic {
     /// The weight of a sample drawn from technique a, whose density is
-    /// `pa`, against technique b with density `pb` at the same direction.
-    #[inline]
+    /// `pa`, against technique b with density `pb` ≥ 0 at the same
+    /// direction: p_a/(p_a + p_b) (balance) or p_a²/(p_a² + p_b²) (power).
     ///
-    /// Where the textbook form leaves the f64 range (a light under 1e-154
-    /// sr makes p_a² overflow, a huge one makes both squares underflow to
-    /// 0/0) the same weight is taken as 1/(1 + (p_b/p_a)^k), which stays in
-    /// range; elsewhere the textbook form is kept, so ordinary results do
-    /// not change by an ulp. 0 when p_a = 0.
+    /// Where that textbook form leaves the f64 range (a light under ~1e-154
+    /// sr makes p_a² overflow to ∞/∞, a huge one makes both squares
+    /// underflow to 0/0) the same weight is taken from the ratio
+    /// r = p_b/p_a as 1/(1 + r) or 1/(1 + r²), which only saturates to 0 or
+    /// 1; elsewhere the textbook form is kept, so ordinary results do not
+    /// change by an ulp. 0 when p_a = 0.
+    #[inline]
     pub fn weight(self, pa: f64, pb: f64) -> f64 {
         let w = match self {
             Heuristic::Balance => pa / (pa + pb),

@@ -139,20 +139,24 @@ impl PreparedEmitter {
         }
     }
 
+    /// L(ω)·max(cos θ, 0) for the unit direction `w` at the receiver.
+    #[inline]
+    fn radiance_cos(&self, receiver: &Receiver, w: DVec3) -> f64 {
+        let cos = w.dot(receiver.normal);
+        if cos > 0.0 {
+            self.emitter.radiance_toward(receiver.point, w) * cos
+        } else {
+            0.0
+        }
+    }
+
     /// One sample of the estimate from the uniform 2-D points `u` (and
     /// `u2`, the light sample of MIS).
     #[inline]
     pub fn evaluate_u(&self, receiver: &Receiver, u: DVec2, u2: DVec2) -> f64 {
         let p = receiver.point;
         let frame = &receiver.frame;
-        let radiance_cos = |w: DVec3| {
-            let cos = w.dot(receiver.normal);
-            if cos > 0.0 {
-                self.emitter.radiance_toward(p, w) * cos
-            } else {
-                0.0
-            }
-        };
+        let radiance_cos = |w: DVec3| self.radiance_cos(receiver, w);
         match self.technique {
             Technique::UniformHemisphere => {
                 let local = sample_uniform_hemisphere(u);
@@ -209,16 +213,8 @@ impl PreparedEmitter {
         u: DVec2,
         u2: DVec2,
     ) -> (f64, f64) {
-        let p = receiver.point;
         let frame = &receiver.frame;
-        let radiance_cos = |w: DVec3| {
-            let cos = w.dot(receiver.normal);
-            if cos > 0.0 {
-                self.emitter.radiance_toward(p, w) * cos
-            } else {
-                0.0
-            }
-        };
+        let radiance_cos = |w: DVec3| self.radiance_cos(receiver, w);
         let mut cosine = 0.0;
         let local = sample_cosine_hemisphere(u);
         let w = frame.from_local(local);

@@ -131,6 +131,15 @@ impl B {
             v
         }
     }
+    /// The relative error of the double-double hi + lo (taken as exact)
+    /// against self, or |hi| if self is 0.
+    pub(crate) fn rel_err_dd(&self, hi: f64, lo: f64) -> f64 {
+        if self.is_zero() {
+            return hi.abs();
+        }
+        ((&B::from(hi) + &B::from(lo) - self) / self).abs().to_f64()
+    }
+
     /// |f − self|/|self| as an f64 (f taken as exact), or |f| if self is 0.
     pub(crate) fn rel_err(&self, f: f64) -> f64 {
         if !f.is_finite() {

@@ -1,13 +1,18 @@
 //! Point and directional lights (delta lights; closed forms).
 
+use super::disk::power_of_two_above;
 use super::error::{finite, finite3, unit, AnalyticError};
+use super::scaled;
 use glam::DVec3;
 
 /// An isotropic point light of intensity I (W/sr) at `light`, seen from a
 /// receiver at `p` with unit normal `n`: E = I max(cos θ, 0)/r², W/m²
 /// (inverse-square law and Lambert's cosine law; pbrt-v4 §12.1), with
-/// cos θ = n·(light − p)/r. Errors: non-finite input, non-unit normal,
-/// `light == p`.
+/// cos θ = n·(light − p)/r. Lengths are scaled by powers of two and
+/// E = I·cos θ·(1/r)² formed without intermediate overflow or underflow,
+/// so a light 1e-200 or 1e200 away gives its ordinary f64 answer. Errors:
+/// non-finite input, a zero normal, `light == p`, and
+/// [`AnalyticError::Overflow`] when E exceeds f64::MAX.
 ///
 /// ```
 /// use glam::DVec3;
@@ -26,15 +31,36 @@ pub fn point_light_irradiance(
 ) -> Result<f64, AnalyticError> {
     finite("intensity", intensity)?;
     let n = unit("normal", normal)?;
-    let v = finite3("light", light)? - finite3("p", p)?;
-    let r2 = v.length_squared();
-    if !(r2 > 0.0) {
+    let (light, p) = (finite3("light", light)?, finite3("p", p)?);
+    // v = light − p in units of a power of two k (no overflow), then of
+    // a second power of two s so that |ṽ| is near 1 (no underflow of |v|²).
+    let k = power_of_two_above(light.abs().max_element().max(p.abs().max_element()));
+    let v = light / k - p / k;
+    let s = power_of_two_above(v.abs().max_element());
+    if !(v.abs().max_element() > 0.0) {
         return Err(AnalyticError::ReceiverInsideLight {
             light: "point light",
         });
     }
-    let cos = n.dot(v) / r2.sqrt();
-    Ok(intensity * cos.max(0.0) / r2)
+    let v = v / s;
+    let r = v.length();
+    let cos = n.dot(v) / r;
+    if !(cos > 0.0) {
+        return Ok(0.0);
+    }
+    scaled::product(
+        "irradiance",
+        &[
+            intensity,
+            cos,
+            1.0 / r,
+            1.0 / r,
+            1.0 / k,
+            1.0 / k,
+            1.0 / s,
+            1.0 / s,
+        ],
+    )
 }
 
 /// A directional light (the Sun as a delta: all rays parallel) whose
@@ -50,5 +76,5 @@ pub fn directional_light_irradiance(
     finite("irradiance_perpendicular", irradiance_perpendicular)?;
     let n = unit("normal", normal)?;
     let d = unit("to_light", to_light)?;
-    Ok(irradiance_perpendicular * n.dot(d).max(0.0))
+    scaled::product("irradiance", &[irradiance_perpendicular, n.dot(d).max(0.0)])
 }

@@ -19,36 +19,52 @@
 //! the distance) for a result of size (ℓ/D)², about log₁₀(D/ℓ) digits
 //! lost; the centred sum's terms are of the result's size.
 //!
-//! Not yet removed: the cancellation of a polygon clipped to a sliver of
-//! height h (relative to its size) just above the horizon, where the
-//! chord's term (≈ its angle w) and the others cancel to a result ∝ h²w
-//! (about 2 log₁₀(1/h) digits lost; measured in the accuracy tests).
+//! A polygon clipped by the horizon to a sliver of height h (relative to
+//! its size), or lying low over it, makes Lambert's terms cancel (the
+//! chord's term ≈ its angle w against the others, for a result ∝ h²w);
+//! there the sin²ε contour form per edge is used, with the vertices'
+//! heights above the receiver's plane computed exactly (the `lambert` and
+//! `sin2_contour` modules): measured within 1e-15 of the exact result at
+//! h = 1e-12, 1e12 sizes away.
 
+use super::disk::power_of_two_above;
 use super::error::{finite, AnalyticError};
+use super::exact_sum;
 use super::scaled;
 use super::Emission;
 use crate::receiver::Receiver;
 use glam::DVec3;
 use lambert_geometry::f64::ConvexPolygon;
 
-/// The part of the polygon `vertices` with n·(x − p) > 0 (Sutherland–
+/// The part of the polygon `vertices` with n·(x − p) ≥ 0 (Sutherland–
 /// Hodgman against the receiver's plane through `p` with normal `n`).
 /// Vertices on the plane are kept; crossing edges are cut at
-/// vᵢ + (vⱼ − vᵢ) dᵢ/(dᵢ − dⱼ), dᵢ = n·(vᵢ − p).
+/// vᵢ + (vⱼ − vᵢ) dᵢ/(dᵢ − dⱼ), dᵢ = n·(vᵢ − p), with the heights dᵢ
+/// computed exactly (an exact dot product rounded to double-double, in
+/// coordinates scaled by a power of two), so which vertices are kept and
+/// where edges are cut does not depend on rounding, however far the
+/// polygon.
+///
+/// ```
+/// use glam::DVec3;
+/// use lambert_light::analytic::clip_polygon_to_hemisphere;
+/// let square = [DVec3::new(0.0, -1.0, -1.0), DVec3::new(0.0, 1.0, -1.0),
+///               DVec3::new(0.0, 1.0, 1.0), DVec3::new(0.0, -1.0, 1.0)];
+/// let upper = clip_polygon_to_hemisphere(DVec3::new(-1.0, 0.0, 0.0), DVec3::Z, &square);
+/// assert_eq!(upper.len(), 4);
+/// assert!(upper.iter().all(|v| v.z >= 0.0));
+/// ```
 pub fn clip_polygon_to_hemisphere(p: DVec3, n: DVec3, vertices: &[DVec3]) -> Vec<DVec3> {
-    let k = vertices.len();
-    let mut out = Vec::with_capacity(k + 1);
-    for i in 0..k {
-        let (a, b) = (vertices[i], vertices[(i + 1) % k]);
-        let (da, db) = (n.dot(a - p), n.dot(b - p));
-        if da >= 0.0 {
-            out.push(a);
-        }
-        if (da > 0.0 && db < 0.0) || (da < 0.0 && db > 0.0) {
-            out.push(a + (b - a) * (da / (da - db)));
-        }
-    }
-    out
+    let k = power_of_two_above(
+        vertices
+            .iter()
+            .fold(p.abs().max_element(), |a, v| a.max(v.abs().max_element())),
+    );
+    let heights: Vec<_> = vertices
+        .iter()
+        .map(|&v| exact_sum::dot_of_difference(n, v / k, p / k))
+        .collect();
+    super::lambert::clip(vertices, &heights).0
 }
 
 /// A uniform planar convex `polygon` of radiance L (front face by the
@@ -90,7 +106,7 @@ pub fn polygon_irradiance(
     let vertices = polygon.vertices();
     // Exact power-of-two rescaling so that no product of two lengths
     // overflows or underflows (vertices 1e300 or 1e-300 in size).
-    let k = super::disk::power_of_two_above(
+    let k = power_of_two_above(
         vertices
             .iter()
             .fold(p.abs().max_element(), |a, v| a.max(v.abs().max_element())),

@@ -63,6 +63,9 @@ pub(crate) struct Integral {
     pub error: f64,
     /// Whether every subinterval met its tolerance within the budget.
     pub converged: bool,
+    /// ∫|f|, the Kronrod estimate over the final subintervals (the scale
+    /// against which the value's rounding is measured).
+    pub magnitude: f64,
 }
 
 /// The default work bound: at most this many G–K(7, 15) panels, i.e.
@@ -88,16 +91,18 @@ pub(crate) fn integrate_bounded<F: Fn(f64) -> f64>(
             value: 0.0,
             error: 0.0,
             converged: true,
+            magnitude: 0.0,
         };
     }
     let first = gk15(&f, a, b);
     let tol = rel_tol * first.2.max(f64::MIN_POSITIVE);
     let mut budget = max_panels.saturating_sub(1);
-    let (value, error, converged) = refine(&f, a, b, first, tol, &mut budget);
+    let (value, error, converged, magnitude) = refine(&f, a, b, first, tol, &mut budget);
     Integral {
         value,
         error,
         converged,
+        magnitude,
     }
 }
 
@@ -109,7 +114,7 @@ pub(crate) fn integrate<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) -
 
 /// Refines [a, b] until |K − G| is below `tol` or below the rounding floor
 /// 50 ε ∫_a^b |f| (beyond which bisection cannot help), while the budget
-/// of panels lasts. Returns (value, error bound, converged).
+/// of panels lasts. Returns (value, error bound, converged, ∫|f|).
 fn refine<F: Fn(f64) -> f64>(
     f: &F,
     a: f64,
@@ -117,12 +122,12 @@ fn refine<F: Fn(f64) -> f64>(
     (k, g, kabs): (f64, f64, f64),
     tol: f64,
     budget: &mut usize,
-) -> (f64, f64, bool) {
+) -> (f64, f64, bool, f64) {
     let m = 0.5 * (a + b);
     let floor = 50.0 * f64::EPSILON * kabs;
     let diff = (k - g).abs();
     if diff <= tol.max(floor) {
-        return (k, diff.max(floor), true);
+        return (k, diff.max(floor), true, kabs);
     }
     if *budget < 2 || m == a || m == b || !diff.is_finite() {
         return (
@@ -133,15 +138,16 @@ fn refine<F: Fn(f64) -> f64>(
                 f64::INFINITY
             },
             false,
+            kabs,
         );
     }
     *budget -= 2;
     let left = gk15(f, a, m);
     let right = gk15(f, m, b);
     let t = tol * std::f64::consts::FRAC_1_SQRT_2;
-    let (vl, el, cl) = refine(f, a, m, left, t, budget);
-    let (vr, er, cr) = refine(f, m, b, right, t, budget);
-    (vl + vr, el + er, cl && cr)
+    let (vl, el, cl, al) = refine(f, a, m, left, t, budget);
+    let (vr, er, cr, ar) = refine(f, m, b, right, t, budget);
+    (vl + vr, el + er, cl && cr, al + ar)
 }
 
 #[cfg(test)]

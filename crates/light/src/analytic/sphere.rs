@@ -1,8 +1,10 @@
 //! A uniform spherical light.
 
-use super::cap::cap_over_sin2;
+use super::cap::{cap_over_sin2, clear_of_horizon, CapAngles};
 use super::disk::power_of_two_above;
+use super::double_double::Dd;
 use super::error::{finite, AnalyticError};
+use super::exact_sum;
 use super::scaled;
 use crate::receiver::Receiver;
 use lambert_geometry::f64::Sphere;
@@ -15,8 +17,17 @@ use lambert_geometry::f64::Sphere;
 /// cos β = n·a ([`super::cap_projected_solid_angle`]): E = Lπ sin²α cos β when the
 /// sphere is wholly above the horizon (β + α ≤ π/2), Snyder's (1996)
 /// horizon-clipped form rewritten without cancellation when it straddles,
-/// 0 below. sin α = r/d and cos α = √((d − r)(d + r))/d are exact to
-/// rounding for α = 1e-8 and for receivers almost touching the sphere.
+/// 0 below.
+///
+/// A sphere clearly outside (d ≥ 2r) and clearly above or below the
+/// horizon (cos β ≥ 1/4) takes the f64 path; every other configuration
+/// has its angles from the exact inputs to double-double precision
+/// (module `cap`): c − p exactly (TwoSum per component), d = |c − p|,
+/// sin α = r/d, cos α = √((d − r)(d + r))/d, cos β = n·(c − p)/(|n| d)
+/// and cos β / sin α = n·(c − p)/(|n| r) from the exact dot product. So a
+/// sphere 1e-8 in angular size whose centre lies 1e-20 above the horizon,
+/// or one that barely shows above it, or a receiver 1e-10 of the radius
+/// from the surface, keeps its digits.
 ///
 /// Lengths are rescaled by a power of two first (no overflow of c − p or
 /// of |c − p|²), and E = L·(P/sin²α)·sin α·sin α is formed without
@@ -49,16 +60,38 @@ pub fn sphere_irradiance(
     // underflow otherwise): a receiver on a sphere of radius 1e308 centred
     // 1e308 away is on it, not at an infinite distance.
     let k = power_of_two_above(c.abs().max_element().max(p.abs().max_element()).max(r));
-    let v = c / k - p / k;
-    let r = r / k;
+    let (c, p, r) = (c / k, p / k, r / k);
+    // Ordinary spheres, clearly outside and clearly off the horizon: f64.
+    let v = c - p;
     let d = v.length();
-    if !(d > r) {
+    if d >= 2.0 * r && r > 0.0 {
+        if let Some((q, s)) = clear_of_horizon(n.dot(v) / d, r / d) {
+            return scaled::product("irradiance", &[radiance, q, s, s]);
+        }
+    }
+    let v = [Dd::sum(c.x, -p.x), Dd::sum(c.y, -p.y), Dd::sum(c.z, -p.z)];
+    let d = exact_sum::length(v);
+    if !(r > 0.0) {
+        // The radius underflowed against the distances: E = Lπ(r/d)²
+        // underflows too, unless the receiver is at the centre.
+        return if d.hi > 0.0 {
+            Ok(0.0)
+        } else {
+            Err(AnalyticError::ReceiverInsideLight { light: "sphere" })
+        };
+    }
+    let r_dd = Dd::from(r);
+    if !((d - r_dd).hi > 0.0) {
         return Err(AnalyticError::ReceiverInsideLight { light: "sphere" });
     }
-    let sg = r / d;
-    let cg = ((d - r) * (d + r)).sqrt() / d;
-    let cb = n.dot(v) / d;
+    let n_dot_v = exact_sum::dot_of_difference(n, c, p) / exact_sum::length_f64(n);
+    let angles = CapAngles {
+        cos_beta: n_dot_v / d,
+        sin_gamma: r_dd / d,
+        cos_gamma: ((d - r_dd) * (d + r_dd)).sqrt() / d,
+        cos_beta_over_sin_gamma: n_dot_v.div_f64(r),
+    };
     // E = L · (P/sin²γ) · sin γ · sin γ, without underflow of sin²γ.
-    let (q, s) = cap_over_sin2(cb, sg, cg);
+    let (q, s) = cap_over_sin2(&angles);
     scaled::product("irradiance", &[radiance, q, s, s])
 }

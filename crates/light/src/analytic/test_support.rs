@@ -135,6 +135,12 @@ pub(crate) mod raw {
     use lambert_geometry::f64::{unit_vector, ConvexPolygon, Disk, Frame, Sphere};
     use lambert_geometry::validate;
 
+    /// The unit normal a shape or receiver built from `n` stores (the
+    /// library's input, which the oracle takes as exact).
+    pub(crate) fn normal(n: DVec3) -> DVec3 {
+        unit_vector("normal", n).expect("a non-zero normal")
+    }
+
     fn receiver(p: DVec3, n: DVec3) -> Result<Receiver, AnalyticError> {
         validate::finite3("p", p)?;
         let normal = unit_vector("normal", n)?;

@@ -24,7 +24,7 @@ fn tilted(beta: f64) -> DVec3 {
 
 #[test]
 fn sky_and_dome() {
-    assert_eq!(sky_irradiance(1.0), PI);
+    assert_eq!(sky_irradiance(1.0), Ok(PI));
     // Dome: (1 + cos β)π/2; β = π gives 0 exactly (|n + z|² = 0).
     for &b in &[0.0, 0.5, FRAC_PI_2, 2.5, PI] {
         let e = dome_irradiance(1.0, tilted(b), DVec3::Z).unwrap();
@@ -179,15 +179,15 @@ fn disk_parallel_offset_against_area_integral() {
         (2.0, 3.0, 1.0),
         (0.3, 1.0, 1.0),
     ] {
-        let e = disk_parallel_offset_irradiance(1.0, h, s, r);
+        let e = disk_parallel_offset_irradiance(1.0, h, s, r).unwrap();
         let p = DVec3::new(-s, 0.0, -h);
         let reference = disk_area_form(p, DVec3::Z, DVec3::ZERO, DVec3::Z, r);
         assert!(rel(e, reference) < 1e-12, "h {h} s {s}: {e} vs {reference}");
     }
     assert!(
         rel(
-            disk_parallel_offset_irradiance(1.0, 2.0, 0.0, 1.0),
-            disk_coaxial_irradiance(1.0, 2.0, 1.0)
+            disk_parallel_offset_irradiance(1.0, 2.0, 0.0, 1.0).unwrap(),
+            disk_coaxial_irradiance(1.0, 2.0, 1.0).unwrap()
         ) < 1e-15
     );
 }
@@ -266,7 +266,12 @@ fn disk_almost_touching() {
         Emission::OneSided,
     )
     .unwrap();
-    assert!(rel(e, disk_parallel_offset_irradiance(1.0, h, 0.3, 1.0)) < 1e-15);
+    assert!(
+        rel(
+            e,
+            disk_parallel_offset_irradiance(1.0, h, 0.3, 1.0).unwrap()
+        ) < 1e-15
+    );
     assert!(rel(e, PI) < 1e-15);
     let n = tilted(0.8);
     let e = raw::disk_irradiance(
@@ -360,7 +365,9 @@ fn polygon_against_area_integral() {
         rev.reverse();
         let back = raw::polygon_irradiance(1.0, DVec3::ZERO, n, &rev, Emission::OneSided).unwrap();
         assert_eq!(front.min(back), 0.0);
-        assert_eq!(front.max(back), e);
+        // The same sum over the reversed edges, whose rounding differs by
+        // a few ulps: tolerance 1e-15.
+        assert!(rel(front.max(back), e) < 1e-15, "tilt {tilt} β {beta}");
     }
 }
 
@@ -408,8 +415,8 @@ fn polygon_4096_approximates_disk() {
         .collect();
     let e =
         raw::polygon_irradiance(1.0, DVec3::ZERO, DVec3::Z, &verts, Emission::OneSided).unwrap();
-    let inner = disk_coaxial_irradiance(1.0, 1.5, (PI / nv as f64).cos());
-    let outer = disk_coaxial_irradiance(1.0, 1.5, 1.0);
+    let inner = disk_coaxial_irradiance(1.0, 1.5, (PI / nv as f64).cos()).unwrap();
+    let outer = disk_coaxial_irradiance(1.0, 1.5, 1.0).unwrap();
     assert!(inner <= e && e <= outer, "{inner} {e} {outer}");
     let bound = 2.0 * (PI / nv as f64).powi(2);
     for &beta in &[0.6, 1.2, 1.5] {
@@ -429,9 +436,10 @@ fn polygon_4096_approximates_disk() {
     }
 }
 
-/// A polygon 1e6 away (size 1): the point-light limit with its O(ℓ²/D²)
-/// correction, plus Lambert's rounding of ~ D/ℓ ulps (module docs):
-/// tolerance 1e-9.
+/// A polygon 1e6 away (size 1): the point-light limit, whose relative
+/// correction is O(ℓ²/D²) = 1e-12 (the square's second moment over the
+/// distance squared, a few times that at most); the centred sum itself is
+/// exact to a few ulps: tolerance 1e-11.
 #[test]
 fn polygon_far_is_point_light() {
     let d = 1e6;
@@ -440,7 +448,7 @@ fn polygon_far_is_point_light() {
     let n = tilted(0.4);
     let e = raw::polygon_irradiance(1.0, DVec3::ZERO, n, &sq, Emission::OneSided).unwrap();
     let point = n.z / (d * d);
-    assert!(rel(e, point) < 1e-9, "{}", rel(e, point));
+    assert!(rel(e, point) < 1e-11, "{}", rel(e, point));
 }
 
 // ---------- invariance and errors ----------

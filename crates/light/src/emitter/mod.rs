@@ -159,8 +159,8 @@ impl Emitter {
         receiver: &Receiver,
     ) -> Result<f64, crate::analytic::AnalyticError> {
         use crate::analytic::{
-            disk_irradiance, polygon_irradiance, sky_cap_irradiance, sphere_irradiance,
-            try_sky_irradiance, AnalyticError, Emission,
+            disk_irradiance, polygon_irradiance, sky_cap_irradiance, sky_irradiance,
+            sphere_irradiance, AnalyticError, Emission,
         };
         let emission = |two_sided: bool| {
             if two_sided {
@@ -171,7 +171,7 @@ impl Emitter {
         };
         let n = receiver.normal;
         match self {
-            Emitter::Sky(s) => try_sky_irradiance(s.radiance),
+            Emitter::Sky(s) => sky_irradiance(s.radiance),
             Emitter::SkyCap(c) => sky_cap_irradiance(c.radiance, n, c.axis, c.half_angle),
             Emitter::Sphere(s) => sphere_irradiance(&s.sphere, s.radiance, receiver),
             Emitter::Disk(d) => {
