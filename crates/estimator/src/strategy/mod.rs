@@ -162,14 +162,16 @@ impl Strategy {
 
     /// The technique used for `emitter` at `receiver`.
     ///
-    /// `Auto` picks the technique of least variance per unit time (the
-    /// study's efficiency 1/(V·T), measured on the built-in scenes; see
-    /// the crate's README for the figures):
+    /// `Auto` picks, per emitter kind, the technique that reaches a given
+    /// error soonest where nothing occludes:
     /// - a sky: cosine sampling (zero variance);
     /// - a sky cap, a sphere, a polygon: projected-solid-angle sampling
     ///   (zero variance without occluders, and the importance function
-    ///   L cos θ itself with them; nothing drawn below the horizon), though
-    ///   it costs 2–10× a cone or spherical-polygon sample;
+    ///   L cos θ itself with them; nothing drawn below the horizon): one
+    ///   sample reaches any error, though a sample costs more than a cone
+    ///   or spherical-polygon sample (up to about 10× a spherical
+    ///   rectangle for a polygon away from the zenith; the sampling crate's
+    ///   `ProjectedPolygon` docs give the measured costs);
     /// - a disk wholly above the horizon: solid-angle sampling of its
     ///   spherical ellipse (bounded values LΩ cos θ); a disk crossing the
     ///   horizon: MIS (power) of cosine and solid-angle sampling, since the
