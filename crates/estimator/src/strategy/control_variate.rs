@@ -5,7 +5,7 @@ use lambert_light::emitter::Emitter;
 use lambert_light::receiver::Receiver;
 
 use super::emitter_light::LightDirection;
-use super::EmitterProjected;
+use super::{EmitterProjected, Technique};
 
 /// The closed form as a control variate for occluded irradiance:
 ///
@@ -61,6 +61,28 @@ impl ControlVariate {
                 unoccluded,
                 projected: !matches!(projected, EmitterProjected::None),
             })
+    }
+
+    /// The projected sampler and control variate that `technique` needs
+    /// for `emitter` at `receiver`: the sampler for `Projected` and
+    /// `ControlVariate` (its residual sampler), the control for
+    /// `ControlVariate`; nothing otherwise.
+    pub fn samplers_for(
+        technique: Technique,
+        emitter: &Emitter,
+        receiver: &Receiver,
+    ) -> (EmitterProjected, Option<Self>) {
+        let projected = match technique {
+            Technique::Projected | Technique::ControlVariate => {
+                EmitterProjected::new(emitter, receiver)
+            }
+            _ => EmitterProjected::None,
+        };
+        let control = match technique {
+            Technique::ControlVariate => ControlVariate::new(emitter, receiver, &projected),
+            _ => None,
+        };
+        (projected, control)
     }
 
     /// One sample of F = E_u − (1 − V) L cos θ/p for the direction `s`

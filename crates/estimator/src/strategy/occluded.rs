@@ -47,16 +47,7 @@ impl<'a> OccludedEmitter<'a> {
     /// at `receiver` for `strategy`, resolved for this emitter.
     pub fn new(emitter: &'a Emitter, receiver: &Receiver, strategy: Strategy) -> Self {
         let technique = strategy.resolve(emitter, receiver);
-        let projected = match technique {
-            Technique::Projected | Technique::ControlVariate => {
-                EmitterProjected::new(emitter, receiver)
-            }
-            _ => EmitterProjected::None,
-        };
-        let control = match technique {
-            Technique::ControlVariate => ControlVariate::new(emitter, receiver, &projected),
-            _ => None,
-        };
+        let (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
         OccludedEmitter {
             emitter,
             technique,

@@ -42,16 +42,7 @@ impl PreparedEmitter {
         let technique = strategy.resolve(emitter, receiver);
         let light = EmitterLight::new(emitter, receiver);
         let area = EmitterArea::new(emitter, receiver);
-        let projected = match technique {
-            Technique::Projected | Technique::ControlVariate => {
-                EmitterProjected::new(emitter, receiver)
-            }
-            _ => EmitterProjected::None,
-        };
-        let control = match technique {
-            Technique::ControlVariate => ControlVariate::new(emitter, receiver, &projected),
-            _ => None,
-        };
+        let (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
         let [first, second] = PartBound::of(
             technique,
             emitter,
