@@ -47,6 +47,26 @@ fn sphere_light(c: &mut Criterion) {
             );
         }
     }
+    // The same estimate with its kernels forced to each instruction set
+    // (the bits are the same; the time is not).
+    for isa in lambert_sampling::isa::Isa::available() {
+        let cfg = EstimateConfig {
+            strategy: Strategy::Light,
+            sequence: SequenceKind::Independent,
+            samples: SAMPLES,
+            seed: 1,
+            threads: 1,
+        };
+        g.bench_function(format!("sphere light independent {isa}"), |b| {
+            b.iter(|| {
+                black_box(
+                    lambert_estimator::estimation::estimate_with_isa(&scene, &cfg, 0.99, isa)
+                        .unwrap()
+                        .mean,
+                )
+            })
+        });
+    }
     g.finish();
 }
 

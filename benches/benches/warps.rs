@@ -233,6 +233,94 @@ fn batches(c: &mut Criterion) {
     g.finish();
 }
 
+/// Structure-of-arrays batches with their random numbers, as the estimator
+/// runs them: SplitMix64 fills the coordinate arrays (one counter-based
+/// output per point), the warp writes three direction arrays, all inside
+/// `Isa::run` for each instruction set this processor has (the widest is
+/// what `Isa::selected` picks).
+fn soa_batches(c: &mut Criterion) {
+    use lambert_sampling::isa::Isa;
+    use lambert_sampling::sequence::SplitMix64;
+    let mut g = c.benchmark_group("soa");
+    g.throughput(Throughput::Elements(BATCH));
+    let n = BATCH as usize;
+    let rng = SplitMix64::new(1);
+    macro_rules! soa {
+        ($name:expr, $real:ty, $fill:ident, |$ux:ident, $uy:ident, $wx:ident, $wy:ident, $wz:ident| $warp:expr) => {
+            for isa in Isa::available() {
+                g.bench_function(format!("{} {isa}", $name), |b| {
+                    let (mut $ux, mut $uy) = (vec![0.0 as $real; n], vec![0.0 as $real; n]);
+                    let (mut $wx, mut $wy, mut $wz) = (
+                        vec![0.0 as $real; n],
+                        vec![0.0 as $real; n],
+                        vec![0.0 as $real; n],
+                    );
+                    let mut first = 0u64;
+                    b.iter(|| {
+                        isa.run(|| {
+                            rng.$fill(first, &mut $ux, &mut $uy);
+                            $warp;
+                        });
+                        first = first.wrapping_add(BATCH);
+                        black_box((&$wx, &$wy, &$wz));
+                    })
+                });
+            }
+        };
+    }
+    soa!(
+        "cosine hemisphere f32",
+        f32,
+        fill_2d_f32,
+        |ux, uy, wx, wy, wz| {
+            s32::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+        }
+    );
+    soa!(
+        "cosine hemisphere f64",
+        f64,
+        fill_2d,
+        |ux, uy, wx, wy, wz| {
+            s64::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+        }
+    );
+    soa!(
+        "uniform hemisphere f32",
+        f32,
+        fill_2d_f32,
+        |ux, uy, wx, wy, wz| {
+            s32::sample_uniform_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+        }
+    );
+    soa!(
+        "uniform sphere f32",
+        f32,
+        fill_2d_f32,
+        |ux, uy, wx, wy, wz| {
+            s32::sample_uniform_sphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+        }
+    );
+    let cone32 = s32::UniformCone::from_theta_max(0.3).unwrap();
+    let cone64 = s64::UniformCone::from_theta_max(0.3).unwrap();
+    soa!(
+        "uniform cone f32",
+        f32,
+        fill_2d_f32,
+        |ux, uy, wx, wy, wz| { cone32.sample_soa(&ux, &uy, &mut wx, &mut wy, &mut wz) }
+    );
+    soa!("uniform cone f64", f64, fill_2d, |ux, uy, wx, wy, wz| {
+        cone64.sample_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+    });
+    g.bench_function("splitmix64 rng only f32", |b| {
+        let (mut ux, mut uy) = (vec![0.0f32; n], vec![0.0f32; n]);
+        b.iter(|| {
+            Isa::selected().run(|| rng.fill_2d_f32(0, &mut ux, &mut uy));
+            black_box((&ux, &uy));
+        })
+    });
+    g.finish();
+}
+
 // criterion_group! generates an undocumented pub fn.
 #[allow(missing_docs)]
 mod group {
@@ -240,7 +328,7 @@ mod group {
     criterion_group! {
         name = benches;
         config = config();
-        targets = warps, batches
+        targets = warps, batches, soa_batches
     }
 }
 criterion_main!(group::benches);

@@ -232,6 +232,42 @@ fn results_are_bit_identical_across_threads_and_runs() {
     }
 }
 
+/// The instruction-set decision: results do not depend on the set the
+/// kernels run with. Every built-in scene × strategy × sequence, forced to
+/// each set this processor has (baseline SSE2, AVX2+FMA, AVX-512), on one
+/// and on two threads, gives the bits of the baseline on one thread.
+#[test]
+fn results_are_bit_identical_across_instruction_sets() {
+    use lambert_estimator::estimation::estimate_with_isa;
+    use lambert_sampling::isa::Isa;
+    let sets = Isa::available();
+    assert!(sets.contains(&Isa::Baseline));
+    for named in builtin_scenes() {
+        for strategy in std::iter::once(Strategy::Auto).chain(Strategy::ALL) {
+            for sequence in SequenceKind::ALL {
+                let mut c = config(strategy, sequence, 5);
+                c.samples = 20_003;
+                let run = |isa, threads| {
+                    let c = EstimateConfig { threads, ..c };
+                    let r = estimate_with_isa(&named.scene, &c, 0.99, isa).unwrap();
+                    (r.mean.to_bits(), r.std_error.to_bits(), r.hits)
+                };
+                let want = run(Isa::Baseline, 1);
+                for &isa in &sets {
+                    for threads in [1, 2] {
+                        assert_eq!(
+                            run(isa, threads),
+                            want,
+                            "{} {strategy} {sequence} {isa} {threads} thread(s)",
+                            named.name
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// An estimator built from the public pieces, with a deliberate defect:
 /// returns (mean, standard error) over 2^18 independent samples.
 fn defective(scene: &Scene, f: impl Fn(&EmitterLight, DVec2) -> f64 + Sync) -> (f64, f64) {

@@ -48,6 +48,7 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use glam::DVec2;
+use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::{SampleSequence, Sobol, Stratified};
 
 use crate::interval::{
@@ -303,6 +304,22 @@ pub fn estimate_at_level(
     config: &EstimateConfig,
     level: f64,
 ) -> Result<EstimateReport, EstimateError> {
+    estimate_with_isa(scene, config, level, Isa::selected())
+}
+
+/// [`estimate_at_level`] with its kernels run for instruction set `isa`
+/// (or the widest narrower set the processor has) instead of the one the
+/// process selected ([`Isa::selected`]). The result is the same, to the
+/// bit, for every set: this is how the tests check it.
+///
+/// # Errors
+/// As [`estimate_at_level`].
+pub fn estimate_with_isa(
+    scene: &Scene,
+    config: &EstimateConfig,
+    level: f64,
+    isa: Isa,
+) -> Result<EstimateReport, EstimateError> {
     if !(level > 0.0 && level < 1.0) {
         return Err(EstimateError::Config {
             field: "level",
@@ -353,7 +370,7 @@ pub fn estimate_at_level(
         (Estimate::new(), Vec::new(), summary, 0.0)
     } else if !rqmc {
         let c: ChunkStats = run_chunked_merge(n, CHUNK_SIZE, config.threads, |chunk, range| {
-            independent_chunk(&prepared, part_count, scene, config.seed, chunk, range)
+            independent_chunk(&prepared, part_count, scene, config.seed, chunk, range, isa)
         })?;
         if c.estimate.non_finite() > 0 {
             return Err(first_non_finite_independent(
@@ -404,6 +421,7 @@ pub fn estimate_at_level(
                     n_k,
                     config.threads,
                     k,
+                    isa,
                 )?,
                 SequenceKind::Stratified => {
                     let strata = u32::try_from(n_k).map_err(|_| EstimateError::Config {
@@ -416,7 +434,16 @@ pub fn estimate_at_level(
                         field: "samples",
                         problem: e.to_string(),
                     })?;
-                    replicate_estimate(&prepared, part_count, scene, &seq, n_k, config.threads, k)?
+                    replicate_estimate(
+                        &prepared,
+                        part_count,
+                        scene,
+                        &seq,
+                        n_k,
+                        config.threads,
+                        k,
+                        isa,
+                    )?
                 }
                 SequenceKind::Independent => unreachable!(),
             };
@@ -545,10 +572,10 @@ impl Mergeable for ChunkStats {
 /// Generates the uniform points of one chunk of an independent-sample
 /// estimate and hands them to `visit(k, u, u2)`, emitter by emitter (`u2`
 /// holds the second point of two-dimensional techniques): the chunk's own
-/// PCG stream, seeded from the run's seed and the chunk index, so the
-/// chunk's values do not depend on which thread runs it. Used both to
-/// estimate and to find the first non-finite sample, so that the two see
-/// the same points.
+/// PCG stream, seeded from the run's seed and the chunk index — the same
+/// numbers [`crate::chunk::independent_chunk`] draws in lanes. The slow
+/// path that finds a failed estimate's first non-finite sample reads its
+/// points from here, one at a time, so that it sees the estimate's points.
 fn independent_points(
     prepared: &[PreparedEmitter],
     seed: u64,
@@ -560,9 +587,7 @@ fn independent_points(
     let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(mix(seed, chunk));
     let mut u = vec![DVec2::ZERO; n];
     let mut u2 = vec![DVec2::ZERO; n];
-    // One 64-bit output per 2-D point: 32 bits per coordinate, u = k·2⁻³²,
-    // the resolution of the Sobol points (and far below any estimate's
-    // error); halves the generator's share of the cost.
+    // One 64-bit output per 2-D point: 32 bits per coordinate, u = k·2⁻³².
     let scale = 1.0 / (1u64 << 32) as f64;
     let mut next = || {
         let bits = rng.next_u64();
@@ -584,10 +609,14 @@ fn independent_points(
     }
 }
 
-/// One chunk of an independent-sample estimate: the emitters add their
-/// estimates for the chunk's points ([`independent_points`]) into a
-/// buffer, counting their parts' hits, and the buffer is summarised by two
-/// passes ([`Estimate::from_values`], which counts the samples' hits).
+/// One chunk of an independent-sample estimate: the chunk's own PCG stream
+/// (seeded from the run's seed and the chunk index, so the chunk's values do
+/// not depend on which thread runs it) gives the uniform points of every
+/// emitter, the emitters add their estimates into a buffer (counting their
+/// parts' hits), and the buffer is summarised by two passes
+/// ([`Estimate::from_values`], which counts the samples' hits). The work is
+/// [`crate::chunk::independent_chunk`]'s: cache-sized blocks, the
+/// instruction set `isa`.
 fn independent_chunk(
     prepared: &[PreparedEmitter],
     part_count: usize,
@@ -595,21 +624,19 @@ fn independent_chunk(
     seed: u64,
     chunk: u64,
     range: std::ops::Range<u64>,
+    isa: Isa,
 ) -> ChunkStats {
     let n = (range.end - range.start) as usize;
-    let mut values = vec![0.0f64; n];
-    let mut hits = Vec::with_capacity(prepared.len());
-    independent_points(prepared, seed, chunk, n, |k, u, u2| {
-        let h = prepared[k].evaluate_batch(&scene.receiver, u, u2, &mut values);
-        hits.push((prepared[k].parts().len(), h));
-    });
-    ChunkStats::new(Estimate::from_values(&values), &hits, part_count)
+    let c = crate::chunk::independent_chunk(prepared, &scene.receiver, mix(seed, chunk), n, isa);
+    chunk_stats(prepared, c, part_count)
 }
 
 /// The points of samples `range` of a randomized-QMC sequence, handed to
 /// `visit(k, u, u2)` emitter by emitter: sample i's points are read from
 /// the sequence at index i (each emitter's dimensions in emitter order, as
-/// [`sample_scene`] reads them). The points are filled one 2-D request
+/// [`sample_scene`] reads them), as [`crate::chunk::sequence_chunk`]
+/// reads them too; the slow path that finds a failed estimate's first
+/// non-finite sample uses this one. The points are filled one 2-D request
 /// (dimension pair) at a time for the whole chunk by
 /// [`SampleSequence::fill_2d`], which gives the values of reading them
 /// sample by sample, to the bit, at a fraction of the cost.
@@ -638,23 +665,33 @@ fn sequence_points<S: SampleSequence>(
     }
 }
 
-/// One chunk of a randomized-QMC estimate: the points of
-/// [`sequence_points`], evaluated emitter by emitter through
-/// [`PreparedEmitter::evaluate_batch`], counting the parts' hits.
+/// One chunk of a randomized-QMC estimate: the sequence's points for
+/// samples `range`, evaluated emitter by emitter in the instruction set
+/// `isa` ([`crate::chunk::sequence_chunk`]), counting the parts' hits.
 fn sequence_chunk<S: SampleSequence>(
     prepared: &[PreparedEmitter],
     part_count: usize,
     scene: &Scene,
     sequence: &S,
     range: std::ops::Range<u64>,
+    isa: Isa,
 ) -> ChunkStats {
-    let mut values = vec![0.0f64; (range.end - range.start) as usize];
-    let mut hits = Vec::with_capacity(prepared.len());
-    sequence_points(prepared, sequence, range, |k, u, u2| {
-        let h = prepared[k].evaluate_batch(&scene.receiver, u, u2, &mut values);
-        hits.push((prepared[k].parts().len(), h));
-    });
-    ChunkStats::new(Estimate::from_values(&values), &hits, part_count)
+    let c = crate::chunk::sequence_chunk(prepared, &scene.receiver, sequence, range, isa);
+    chunk_stats(prepared, c, part_count)
+}
+
+/// A chunk's result with its hit counts laid out part by part.
+fn chunk_stats(
+    prepared: &[PreparedEmitter],
+    c: crate::chunk::ChunkResult,
+    part_count: usize,
+) -> ChunkStats {
+    let hits: Vec<(usize, PartHits)> = prepared
+        .iter()
+        .zip(c.hits)
+        .map(|(p, h)| (p.parts().len(), h))
+        .collect();
+    ChunkStats::new(c.estimate, &hits, part_count)
 }
 
 /// Randomization `k` of a randomized-QMC estimate: samples `0..n` of
@@ -668,9 +705,10 @@ fn replicate_estimate<S: SampleSequence>(
     n: u64,
     threads: usize,
     k: u64,
+    isa: Isa,
 ) -> Result<ChunkStats, EstimateError> {
     let c: ChunkStats = run_chunked_merge(n, CHUNK_SIZE, threads, |_, range| {
-        sequence_chunk(prepared, part_count, scene, sequence, range)
+        sequence_chunk(prepared, part_count, scene, sequence, range, isa)
     })?;
     if c.estimate.non_finite() > 0 {
         return Err(with_randomization(

@@ -7,6 +7,7 @@
 //! statistics with honest standard errors ([`statistics`]). Scenes, emitters and closed forms come
 //! from `lambert-light`; warps and sequences from `lambert-sampling`.
 
+pub mod chunk;
 pub mod clt;
 pub mod estimation;
 pub mod interval;

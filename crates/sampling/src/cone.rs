@@ -148,6 +148,21 @@ macro_rules! cone_impl {
                 }
             }
 
+            /// [`UniformCone::sample`] in structure-of-arrays form: the
+            /// direction for `(ux[i], uy[i])` goes to `(wx[i], wy[i], wz[i])`,
+            /// to the bit the one-sample warp's.
+            #[inline(always)]
+            pub fn sample_soa(
+                &self,
+                ux: &[Real],
+                uy: &[Real],
+                wx: &mut [Real],
+                wy: &mut [Real],
+                wz: &mut [Real],
+            ) {
+                crate::soa::map2_to3(ux, uy, wx, wy, wz, |u| self.sample(u));
+            }
+
             /// The density 1/(2πh) per steradian of a unit direction `w`
             /// inside the cap, 0 outside. Directions within a few ulps
             /// outside the rim count as inside, so a rim sample rounded

@@ -49,6 +49,22 @@ macro_rules! hemisphere_impl {
             }
         }
 
+        /// [`sample_uniform_hemisphere`] in structure-of-arrays form: the
+        /// direction for `(ux[i], uy[i])` goes to `(wx[i], wy[i], wz[i])`
+        /// (the shortest length wins). The same bits as the one-sample
+        /// warp; run inside [`Isa::run`](crate::isa::Isa::run) to use the
+        /// processor's widest vectors.
+        #[inline(always)]
+        pub fn sample_uniform_hemisphere_soa(
+            ux: &[Real],
+            uy: &[Real],
+            wx: &mut [Real],
+            wy: &mut [Real],
+            wz: &mut [Real],
+        ) {
+            crate::soa::map2_to3(ux, uy, wx, wy, wz, |u| sample_uniform_hemisphere(u));
+        }
+
         /// The density of [`sample_uniform_hemisphere`]: 1/(2π) per
         /// steradian for w_z ≥ 0, else 0.
         #[inline]
@@ -118,6 +134,34 @@ macro_rules! hemisphere_impl {
             for (o, &ui) in out.iter_mut().zip(u) {
                 *o = sample_cosine_hemisphere(ui);
             }
+        }
+
+        /// [`sample_cosine_hemisphere`] in structure-of-arrays form: the
+        /// direction for `(ux[i], uy[i])` goes to `(wx[i], wy[i], wz[i])`
+        /// (the shortest length wins), to the bit the one-sample warp's.
+        /// Branch-free, so it vectorises: run it inside
+        /// [`Isa::run`](crate::isa::Isa::run) to use the processor's widest
+        /// vectors.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{sample_cosine_hemisphere, sample_cosine_hemisphere_soa};")]
+        /// use lambert_sampling::isa::Isa;
+        #[doc = concat!("use glam::", stringify!($v2), ";")]
+        /// let (ux, uy) = ([0.1, 0.7], [0.2, 0.4]);
+        /// let (mut x, mut y, mut z) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+        /// Isa::selected().run(|| sample_cosine_hemisphere_soa(&ux, &uy, &mut x, &mut y, &mut z));
+        #[doc = concat!("let w = sample_cosine_hemisphere(", stringify!($v2), "::new(0.7, 0.4));")]
+        /// assert_eq!((x[1], y[1], z[1]), (w.x, w.y, w.z));
+        /// ```
+        #[inline(always)]
+        pub fn sample_cosine_hemisphere_soa(
+            ux: &[Real],
+            uy: &[Real],
+            wx: &mut [Real],
+            wy: &mut [Real],
+            wz: &mut [Real],
+        ) {
+            crate::soa::map2_to3(ux, uy, wx, wy, wz, |u| sample_cosine_hemisphere(u));
         }
 
         /// The density of [`sample_cosine_hemisphere`]: cos θ/π per

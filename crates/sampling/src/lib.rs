@@ -34,6 +34,7 @@ mod disk_light;
 pub mod error;
 mod hemisphere;
 mod horizon_clip;
+pub mod isa;
 mod light_sample;
 mod light_sampler;
 mod polygon_light;
@@ -42,6 +43,7 @@ mod projected_polygon;
 mod projected_sphere;
 mod segment;
 pub mod sequence;
+mod soa;
 mod sphere;
 mod sphere_light;
 mod spherical;
@@ -73,7 +75,8 @@ macro_rules! public_api {
         pub use crate::hemisphere::$p::{
             invert_cosine_hemisphere, invert_uniform_hemisphere, pdf_cosine_hemisphere,
             pdf_uniform_hemisphere, sample_cosine_hemisphere, sample_cosine_hemisphere_batch,
-            sample_uniform_hemisphere, sample_uniform_hemisphere_batch,
+            sample_cosine_hemisphere_soa, sample_uniform_hemisphere,
+            sample_uniform_hemisphere_batch, sample_uniform_hemisphere_soa,
         };
         pub use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
         pub use crate::light_sampler::$p::{seen_from, LightSampler};
@@ -83,7 +86,7 @@ macro_rules! public_api {
         pub use crate::projected_sphere::$p::{ProjectedSphere, ProjectedSphereSampler};
         pub use crate::sphere::$p::{
             invert_uniform_sphere, pdf_uniform_sphere, sample_uniform_sphere,
-            sample_uniform_sphere_batch,
+            sample_uniform_sphere_batch, sample_uniform_sphere_soa,
         };
         pub use crate::sphere_light::$p::{SphereLightSampler, SphereSolidAngle};
         pub use crate::spherical::$p::{azimuth_fraction, direction_from, one_minus_cos_theta};

@@ -47,6 +47,20 @@ macro_rules! sphere_impl {
             }
         }
 
+        /// [`sample_uniform_sphere`] in structure-of-arrays form: the
+        /// direction for `(ux[i], uy[i])` goes to `(wx[i], wy[i], wz[i])`,
+        /// to the bit the one-sample warp's.
+        #[inline(always)]
+        pub fn sample_uniform_sphere_soa(
+            ux: &[Real],
+            uy: &[Real],
+            wx: &mut [Real],
+            wy: &mut [Real],
+            wz: &mut [Real],
+        ) {
+            crate::soa::map2_to3(ux, uy, wx, wy, wz, |u| sample_uniform_sphere(u));
+        }
+
         /// The density of [`sample_uniform_sphere`]: 1/(4π) per steradian
         /// everywhere.
         #[inline]

@@ -104,6 +104,48 @@ fn split_mean(sum: &NeumaierSum, n: u64) -> (f64, f64) {
     (hi, (r + c) / nf)
 }
 
+/// The compensated sum of `f(x)` over the finite values of `values`, in
+/// four lanes (value i in lane i mod 4) merged in lane order, as
+/// [`Estimate::from_values`] documents.
+///
+/// Branch-free, so it vectorises (the four lanes are one vector): a
+/// non-finite value adds 0 to its lane instead of being skipped, which
+/// leaves the lane's bits as they were (its running sum starts at +0 and
+/// can never become −0 by round-to-nearest additions, so s + 0 = s and the
+/// rounding error (s − s) + 0 = +0 adds nothing to the compensation).
+#[inline(always)]
+fn lane_sums(values: &[f64], f: impl Fn(f64) -> f64) -> NeumaierSum {
+    const LANES: usize = 4;
+    let mut s = [0.0f64; LANES];
+    let mut c = [0.0f64; LANES];
+    let add = |s: &mut f64, c: &mut f64, x: f64| {
+        let y = if x.is_finite() { f(x) } else { 0.0 };
+        // Neumaier's step (NeumaierSum::add), written with a select.
+        let t = *s + y;
+        let err = if s.abs() >= y.abs() {
+            (*s - t) + y
+        } else {
+            (y - t) + *s
+        };
+        *c += err;
+        *s = t;
+    };
+    let mut blocks = values.chunks_exact(LANES);
+    for block in blocks.by_ref() {
+        for j in 0..LANES {
+            add(&mut s[j], &mut c[j], block[j]);
+        }
+    }
+    for (j, &x) in blocks.remainder().iter().enumerate() {
+        add(&mut s[j], &mut c[j], x);
+    }
+    let mut sum = NeumaierSum::from_parts(s[0], c[0]);
+    for j in 1..LANES {
+        sum.merge(&NeumaierSum::from_parts(s[j], c[j]));
+    }
+    sum
+}
+
 impl Estimate {
     /// The empty estimate (n = 0).
     pub const fn new() -> Self {
@@ -146,39 +188,19 @@ impl Estimate {
     /// the result merges like any other estimate. Non-finite values are
     /// counted in [`non_finite`](Estimate::non_finite), non-zero ones in
     /// [`nonzero`](Estimate::nonzero) (in the first pass, with the sums).
+    #[inline(always)]
     pub fn from_values(values: &[f64]) -> Estimate {
-        // Four interleaved compensated sums, merged in a fixed order: the
-        // same accuracy as one, without one long dependency chain.
-        const LANES: usize = 4;
-        let mut lanes = [NeumaierSum::new(); LANES];
+        // Four interleaved compensated sums (value i goes to lane i mod 4),
+        // merged in a fixed order: the same accuracy as one, without one
+        // long dependency chain.
         let mut n = 0u64;
-        let mut non_finite = 0u64;
         let mut nonzero = 0u64;
-        let mut blocks = values.chunks_exact(LANES);
-        for block in blocks.by_ref() {
-            for (lane, &x) in lanes.iter_mut().zip(block) {
-                if x.is_finite() {
-                    lane.add(x);
-                    n += 1;
-                    nonzero += u64::from(x != 0.0);
-                } else {
-                    non_finite += 1;
-                }
-            }
+        for &x in values {
+            n += u64::from(x.is_finite());
+            nonzero += u64::from(x.is_finite() && x != 0.0);
         }
-        for (lane, &x) in lanes.iter_mut().zip(blocks.remainder()) {
-            if x.is_finite() {
-                lane.add(x);
-                n += 1;
-                nonzero += u64::from(x != 0.0);
-            } else {
-                non_finite += 1;
-            }
-        }
-        let mut sum = lanes[0];
-        for lane in &lanes[1..] {
-            sum.merge(lane);
-        }
+        let non_finite = values.len() as u64 - n;
+        let sum = lane_sums(values, |x| x);
         if n == 0 {
             return Estimate {
                 non_finite,
@@ -186,26 +208,10 @@ impl Estimate {
             };
         }
         let (mean_hi, mean_lo) = split_mean(&sum, n);
-        let mut squares = [NeumaierSum::new(); LANES];
-        let mut blocks = values.chunks_exact(LANES);
-        for block in blocks.by_ref() {
-            for (lane, &x) in squares.iter_mut().zip(block) {
-                if x.is_finite() {
-                    let d = (x - mean_hi) - mean_lo;
-                    lane.add(d * d);
-                }
-            }
-        }
-        for (lane, &x) in squares.iter_mut().zip(blocks.remainder()) {
-            if x.is_finite() {
-                let d = (x - mean_hi) - mean_lo;
-                lane.add(d * d);
-            }
-        }
-        let mut m2 = squares[0];
-        for lane in &squares[1..] {
-            m2.merge(lane);
-        }
+        let m2 = lane_sums(values, |x| {
+            let d = (x - mean_hi) - mean_lo;
+            d * d
+        });
         Estimate {
             n,
             non_finite,

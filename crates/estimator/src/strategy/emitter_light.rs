@@ -100,29 +100,14 @@ impl EmitterLight {
     /// sample, or a sample of zero or non-finite density).
     #[inline]
     pub fn sample(&self, u: DVec2) -> Option<LightDirection> {
-        let (direction, pdf) = match self {
-            EmitterLight::Sky => {
-                let w = sample_uniform_sphere(u);
-                (w, pdf_uniform_sphere(w))
-            }
-            EmitterLight::Sphere(s) => {
-                let l = s.sample(u);
-                (l.direction, l.pdf)
-            }
-            EmitterLight::Cap(frame, cone) => {
-                (frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle())
-            }
-            EmitterLight::Polygon(p) => {
-                let l = p.sample(u)?;
-                (l.direction, l.pdf)
-            }
-            EmitterLight::Disk(d) => {
-                let l = d.sample(u);
-                (l.direction, l.pdf)
-            }
-            EmitterLight::None => return None,
-        };
-        (pdf > 0.0 && pdf.is_finite()).then_some(LightDirection { direction, pdf })
+        match self {
+            EmitterLight::Sky => sample_sky(u),
+            EmitterLight::Sphere(s) => sample_sphere(s, u),
+            EmitterLight::Cap(frame, cone) => sample_cap(frame, cone, u),
+            EmitterLight::Polygon(p) => sample_polygon(p, u),
+            EmitterLight::Disk(d) => sample_disk(d, u),
+            EmitterLight::None => None,
+        }
     }
 
     /// The density per steradian with which [`EmitterLight::sample`]
@@ -138,4 +123,53 @@ impl EmitterLight {
             EmitterLight::None => 0.0,
         }
     }
+}
+
+// One function per kind of [`EmitterLight::sample`], so that a batch loop
+// over one emitter calls its kind's sampler directly (strategy::batch).
+
+/// A direction with density `pdf`, if the density is positive and finite.
+#[inline(always)]
+fn checked(direction: DVec3, pdf: f64) -> Option<LightDirection> {
+    (pdf > 0.0 && pdf.is_finite()).then_some(LightDirection { direction, pdf })
+}
+
+/// [`EmitterLight::sample`] of a sky: the uniform sphere.
+#[inline(always)]
+pub(super) fn sample_sky(u: DVec2) -> Option<LightDirection> {
+    let w = sample_uniform_sphere(u);
+    checked(w, pdf_uniform_sphere(w))
+}
+
+/// [`EmitterLight::sample`] of a sphere: its subtended cone. The direction
+/// and density of [`SphereSolidAngle::sample`] (the cone's direction in its
+/// frame, 1/Ω), without the point on the sphere and its distance, which
+/// irradiance does not need.
+#[inline(always)]
+pub(super) fn sample_sphere(s: &SphereSolidAngle, u: DVec2) -> Option<LightDirection> {
+    let cone = s.cone();
+    checked(
+        s.frame().from_local(cone.sample(u)),
+        1.0 / cone.solid_angle(),
+    )
+}
+
+/// [`EmitterLight::sample`] of a sky cap: its cone, in its frame.
+#[inline(always)]
+pub(super) fn sample_cap(frame: &Frame, cone: &UniformCone, u: DVec2) -> Option<LightDirection> {
+    checked(frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle())
+}
+
+/// [`EmitterLight::sample`] of a polygon: its spherical polygon.
+#[inline(always)]
+pub(super) fn sample_polygon(p: &PolygonSolidAngle, u: DVec2) -> Option<LightDirection> {
+    let l = p.sample(u)?;
+    checked(l.direction, l.pdf)
+}
+
+/// [`EmitterLight::sample`] of a disk: its spherical ellipse.
+#[inline(always)]
+pub(super) fn sample_disk(d: &DiskSolidAngle, u: DVec2) -> Option<LightDirection> {
+    let l = d.sample(u);
+    checked(l.direction, l.pdf)
 }

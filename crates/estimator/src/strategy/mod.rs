@@ -50,6 +50,7 @@
 //! dimensions of the sequence, and the sample's value is the sum of the
 //! per-emitter estimates: unbiased, since each term is.
 
+mod batch;
 mod control_variate;
 mod emitter_area;
 mod emitter_light;

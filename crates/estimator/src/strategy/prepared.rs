@@ -24,8 +24,8 @@ pub struct PreparedEmitter {
     pub emitter: Emitter,
     /// The technique used for it.
     pub technique: Technique,
-    light: EmitterLight,
-    area: EmitterArea,
+    pub(super) light: EmitterLight,
+    pub(super) area: EmitterArea,
     projected: EmitterProjected,
     control: Option<ControlVariate>,
     parts: [PartBound; 2],
@@ -94,7 +94,7 @@ impl PreparedEmitter {
     /// ([`EmitterLight::always_hits`]), and every projected sample
     /// ([`EmitterProjected`] samples only what the receiver sees of the
     /// emitter's lit side).
-    fn uniform_radiance(&self) -> f64 {
+    pub(super) fn uniform_radiance(&self) -> f64 {
         match &self.emitter {
             Emitter::Sphere(s) => s.radiance,
             Emitter::SkyCap(c) => c.radiance,
@@ -226,10 +226,11 @@ impl PreparedEmitter {
     /// Adds this emitter's estimate for each sample of a chunk to `out`
     /// (`out[i] += F(u[i], u2[i])`) and returns, per part
     /// ([`parts`](Self::parts)), how many samples had a non-zero value
-    /// there (counted in the same pass, without a branch). Light sampling
-    /// of a cone (spheres, sky caps) runs through the slice form of the
-    /// cone warp, which the compiler can vectorise; everything else loops
-    /// over [`evaluate_u`](Self::evaluate_u).
+    /// there (counted in the same pass, without a branch). The points are
+    /// split into coordinate arrays a block at a time and run through
+    /// [`add_batch`](Self::add_batch) (one specialised loop per technique
+    /// and emitter kind); call `add_batch` directly, inside
+    /// [`Isa::run`](lambert_sampling::isa::Isa::run), to use wide vectors.
     pub fn evaluate_batch(
         &self,
         receiver: &Receiver,
@@ -237,41 +238,33 @@ impl PreparedEmitter {
         u2: &[DVec2],
         out: &mut [f64],
     ) -> PartHits {
+        const BLOCK: usize = 256;
         let mut hits = [0u64; 2];
-        if let (Technique::Light, EmitterLight::Sphere(sphere)) = (self.technique, &self.light) {
-            // pdf is the constant 1/Ω: F = L Ω max(n·ω, 0).
-            let scale = self.uniform_radiance() * sphere.solid_angle();
-            let cone = sphere.cone();
-            let frame = sphere.frame();
-            // Rotate the normal into the cone's frame once: n·ω = n_local·ω_local.
-            let n_local = frame.to_local(receiver.normal);
-            const BLOCK: usize = 256;
-            let mut local = [DVec3::ZERO; BLOCK];
-            for (u_block, out_block) in u.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
-                let local = &mut local[..u_block.len()];
-                cone.sample_batch(u_block, local);
-                for (o, w) in out_block.iter_mut().zip(local.iter()) {
-                    let f = scale * n_local.dot(*w).max(0.0);
-                    hits[0] += u64::from(f != 0.0);
-                    *o += f;
+        let mis = self.technique.dimensions() > 1;
+        let mut c = [[0.0f64; BLOCK]; 4];
+        let n = u
+            .len()
+            .min(out.len())
+            .min(if mis { u2.len() } else { usize::MAX });
+        for start in (0..n).step_by(BLOCK) {
+            let m = BLOCK.min(n - start);
+            let [ux, uy, vx, vy] = &mut c;
+            for k in 0..m {
+                (ux[k], uy[k]) = (u[start + k].x, u[start + k].y);
+                if mis {
+                    (vx[k], vy[k]) = (u2[start + k].x, u2[start + k].y);
                 }
             }
-            return hits;
-        }
-        if let Technique::Mis(h) = self.technique {
-            // The sum cosine + light is evaluate_u's value, to the bit.
-            for ((o, &a), &b) in out.iter_mut().zip(u).zip(u2) {
-                let (cosine, light) = self.mis_parts(receiver, h, a, b);
-                hits[0] += u64::from(cosine != 0.0);
-                hits[1] += u64::from(light != 0.0);
-                *o += cosine + light;
-            }
-            return hits;
-        }
-        for ((o, &a), &b) in out.iter_mut().zip(u).zip(u2) {
-            let f = self.evaluate_u(receiver, a, b);
-            hits[0] += u64::from(f != 0.0);
-            *o += f;
+            let h = self.add_batch(
+                receiver,
+                &ux[..m],
+                &uy[..m],
+                &vx[..m],
+                &vy[..m],
+                &mut out[start..start + m],
+            );
+            hits[0] += h[0];
+            hits[1] += h[1];
         }
         hits
     }

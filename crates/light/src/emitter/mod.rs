@@ -89,30 +89,17 @@ impl Emitter {
 
     /// The radiance L arriving at `origin` from the unit direction `w`
     /// (0 where the emitter is not seen, or seen from the back of a
-    /// one-sided face); 0 for delta lights.
+    /// one-sided face); 0 for delta lights. Each kind's own
+    /// `radiance_toward` (e.g. [`SphereLight::radiance_toward`]) does the
+    /// same without the match, for loops over one emitter.
     #[inline]
     pub fn radiance_toward(&self, origin: DVec3, w: DVec3) -> f64 {
-        let ray = Ray::new(origin, w);
-        let seen = |shape: &dyn Intersect| shape.hit_distance(&ray, f64::INFINITY).is_some();
         match self {
             Emitter::Sky(s) => s.radiance,
-            Emitter::SkyCap(c) => {
-                if c.contains(w) {
-                    c.radiance
-                } else {
-                    0.0
-                }
-            }
-            Emitter::Sphere(s) if seen(&s.sphere) => s.radiance,
-            Emitter::Disk(d) if (d.two_sided || w.dot(d.disk.normal()) < 0.0) && seen(&d.disk) => {
-                d.radiance
-            }
-            Emitter::Polygon(p)
-                if (p.two_sided || w.dot(p.polygon.normal()) < 0.0) && seen(&p.polygon) =>
-            {
-                p.radiance
-            }
-            Emitter::Sphere(_) | Emitter::Disk(_) | Emitter::Polygon(_) => 0.0,
+            Emitter::SkyCap(c) => c.radiance_toward(w),
+            Emitter::Sphere(s) => s.radiance_toward(origin, w),
+            Emitter::Disk(d) => d.radiance_toward(origin, w),
+            Emitter::Polygon(p) => p.radiance_toward(origin, w),
             Emitter::Point(_) | Emitter::Directional(_) => 0.0,
         }
     }
@@ -133,6 +120,66 @@ impl Emitter {
             }
             Emitter::Directional(d) => d.irradiance * receiver.normal.dot(d.direction).max(0.0),
             _ => 0.0,
+        }
+    }
+}
+
+impl SkyCap {
+    /// The radiance arriving from the unit direction `w`: L inside the
+    /// cap, 0 outside.
+    #[inline]
+    pub fn radiance_toward(&self, w: DVec3) -> f64 {
+        if self.contains(w) {
+            self.radiance
+        } else {
+            0.0
+        }
+    }
+}
+
+impl SphereLight {
+    /// The radiance arriving at `origin` (outside the sphere) from the unit
+    /// direction `w`: L if the ray meets the sphere, else 0.
+    #[inline]
+    pub fn radiance_toward(&self, origin: DVec3, w: DVec3) -> f64 {
+        let ray = Ray::new(origin, w);
+        if self.sphere.hit_distance(&ray, f64::INFINITY).is_some() {
+            self.radiance
+        } else {
+            0.0
+        }
+    }
+}
+
+impl DiskLight {
+    /// The radiance arriving at `origin` from the unit direction `w`: L if
+    /// the ray meets the disk on an emitting side (both, or the side its
+    /// normal faces), else 0.
+    #[inline]
+    pub fn radiance_toward(&self, origin: DVec3, w: DVec3) -> f64 {
+        let ray = Ray::new(origin, w);
+        if (self.two_sided || w.dot(self.disk.normal()) < 0.0)
+            && self.disk.hit_distance(&ray, f64::INFINITY).is_some()
+        {
+            self.radiance
+        } else {
+            0.0
+        }
+    }
+}
+
+impl PolygonLight {
+    /// The radiance arriving at `origin` from the unit direction `w`: L if
+    /// the ray meets the polygon on an emitting side, else 0.
+    #[inline]
+    pub fn radiance_toward(&self, origin: DVec3, w: DVec3) -> f64 {
+        let ray = Ray::new(origin, w);
+        if (self.two_sided || w.dot(self.polygon.normal()) < 0.0)
+            && self.polygon.hit_distance(&ray, f64::INFINITY).is_some()
+        {
+            self.radiance
+        } else {
+            0.0
         }
     }
 }

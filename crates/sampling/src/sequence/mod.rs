@@ -12,6 +12,7 @@
 //! | [`Independent`] | i.i.d. uniform numbers from PCG32, one stream per sample index | O'Neill 2014 |
 //! | [`Stratified`] | jittered, multi-jittered (Latin hypercube) strata for a known sample count | Chiu, Shirley & Wang 1994; Kensler 2013; pbrt-v4 §8.5 |
 //! | [`Sobol`] | Owen-scrambled Sobol (0,2)-sequence, 256 dimensions | Sobol 1967; Joe & Kuo 2008; Owen 1995; Laine & Karras 2011; Burley 2020 |
+//! | [`SplitMix64`] | i.i.d. 2-D points for whole batches, one counter-based output per point (vectorisable) | Steele, Lea & Flood 2014 |
 //!
 //! Dimensions are consumed in order: [`next_1d`](SampleSequence::next_1d)
 //! takes one, [`next_2d`](SampleSequence::next_2d) and
@@ -43,6 +44,7 @@ pub mod independent;
 pub mod sobol;
 mod sobol_batch;
 mod sobol_table;
+mod splitmix;
 pub mod stratified;
 mod stratified_batch;
 #[cfg(test)]
@@ -50,6 +52,7 @@ mod value_stability;
 
 pub use independent::Independent;
 pub use sobol::{Scramble, Sobol, SobolLayout};
+pub use splitmix::SplitMix64;
 pub use stratified::Stratified;
 
 use glam::{DVec2, Vec2};

@@ -1,0 +1,351 @@
+//! Batch kernels: one emitter's estimate F = L cos θ / p for a whole block
+//! of samples, in structure-of-arrays form.
+//!
+//! [`PreparedEmitter::evaluate_u`] decides per sample which technique runs,
+//! which kind of emitter is looked up and which light sampler draws: three
+//! `match`es inside the loop, which keep the compiler from vectorising it.
+//! [`PreparedEmitter::add_batch`] makes those decisions once per block and
+//! then runs a loop specialised for the (technique, emitter kind) pair over
+//! arrays of coordinates (`ux`, `uy`, and `vx`, `vy` for the light sample of
+//! MIS): every call in it is inlined, so the loop vectorises where its
+//! arithmetic is branch-free (warps, frames, the cone of a sphere or sky
+//! cap, ray–sphere and ray–plane tests) and is compiled for the instruction
+//! set the caller runs it with ([`lambert_sampling::isa::Isa::run`]). Each
+//! loop computes the same operations in the same order as `evaluate_u`, so
+//! the values are the same to the bit (the estimator's pinned-value tests
+//! check it). Light sampling of a sphere takes the shortcut of the cone in
+//! its own frame, F = L Ω max(n_local·ω_local, 0) (the pdf is the constant
+//! 1/Ω), as the estimator always has.
+
+use glam::{DVec2, DVec3};
+use lambert_light::emitter::Emitter;
+use lambert_light::receiver::Receiver;
+use lambert_sampling::f64::{
+    pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
+    sample_uniform_hemisphere, LightSampler, SphereSolidAngle,
+};
+
+use super::emitter_light::{sample_cap, sample_disk, sample_polygon, sample_sky, sample_sphere};
+use super::{
+    EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
+};
+
+impl PreparedEmitter {
+    /// Adds this emitter's estimate for samples `i` of a block to `out[i]`:
+    /// `out[i] += F((ux[i], uy[i]), (vx[i], vy[i]))`, the value of
+    /// [`evaluate_u`](Self::evaluate_u) to the bit (the light shortcut for
+    /// spheres aside, module docs), over the shortest of the slices (`vx`,
+    /// `vy` are read only by MIS). Returns how many samples had a non-zero
+    /// value in each part.
+    #[inline(always)]
+    pub fn add_batch(
+        &self,
+        receiver: &Receiver,
+        ux: &[f64],
+        uy: &[f64],
+        vx: &[f64],
+        vy: &[f64],
+        out: &mut [f64],
+    ) -> PartHits {
+        let p = receiver.point;
+        let mis = matches!(self.technique, Technique::Mis(_));
+        let mut n = ux.len().min(uy.len()).min(out.len());
+        if mis {
+            n = n.min(vx.len()).min(vy.len());
+        }
+        let block = Block {
+            ux: &ux[..n],
+            uy: &uy[..n],
+            vx: if mis { &vx[..n] } else { &[] },
+            vy: if mis { &vy[..n] } else { &[] },
+        };
+        let out = &mut out[..n];
+        match (&self.light, &self.emitter) {
+            (EmitterLight::Sphere(cone), Emitter::Sphere(e)) => {
+                if self.technique == Technique::Light {
+                    return sphere_cone_batch(cone, e.radiance, receiver.normal, &block, out);
+                }
+                technique_batch(
+                    self,
+                    receiver,
+                    #[inline(always)]
+                    |w| e.radiance_toward(p, w),
+                    #[inline(always)]
+                    |u| sample_sphere(cone, u),
+                    #[inline(always)]
+                    |w| cone.pdf(w),
+                    &block,
+                    out,
+                )
+            }
+            (EmitterLight::Sky, Emitter::Sky(e)) => technique_batch(
+                self,
+                receiver,
+                #[inline(always)]
+                |_| e.radiance,
+                sample_sky,
+                pdf_uniform_sphere,
+                &block,
+                out,
+            ),
+            (EmitterLight::Cap(frame, cone), Emitter::SkyCap(e)) => technique_batch(
+                self,
+                receiver,
+                #[inline(always)]
+                |w| e.radiance_toward(w),
+                #[inline(always)]
+                |u| sample_cap(frame, cone, u),
+                #[inline(always)]
+                |w| cone.pdf(frame.to_local(w)),
+                &block,
+                out,
+            ),
+            (EmitterLight::Polygon(poly), Emitter::Polygon(e)) => technique_batch(
+                self,
+                receiver,
+                #[inline(always)]
+                |w| e.radiance_toward(p, w),
+                #[inline(always)]
+                |u| sample_polygon(poly, u),
+                #[inline(always)]
+                |w| poly.pdf(w),
+                &block,
+                out,
+            ),
+            (EmitterLight::Disk(d), Emitter::Disk(e)) => technique_batch(
+                self,
+                receiver,
+                #[inline(always)]
+                |w| e.radiance_toward(p, w),
+                #[inline(always)]
+                |u| sample_disk(d, u),
+                #[inline(always)]
+                |w| d.pdf(w),
+                &block,
+                out,
+            ),
+            // No light sampler (an invisible light): light samples are
+            // none, the other techniques still look the emitter up.
+            _ => technique_batch(
+                self,
+                receiver,
+                #[inline(always)]
+                |w| self.emitter.radiance_toward(p, w),
+                #[inline(always)]
+                |_| None,
+                #[inline(always)]
+                |_| 0.0,
+                &block,
+                out,
+            ),
+        }
+    }
+}
+
+/// One block's coordinates, cut to one length.
+struct Block<'a> {
+    ux: &'a [f64],
+    uy: &'a [f64],
+    vx: &'a [f64],
+    vy: &'a [f64],
+}
+
+impl Block<'_> {
+    #[inline(always)]
+    fn u(&self, i: usize) -> DVec2 {
+        DVec2::new(self.ux[i], self.uy[i])
+    }
+
+    #[inline(always)]
+    fn v(&self, i: usize) -> DVec2 {
+        DVec2::new(self.vx[i], self.vy[i])
+    }
+}
+
+/// Light sampling of a sphere through its cone: F = L Ω max(n_local·ω, 0)
+/// with ω the cone's direction in its own frame and n_local the normal
+/// rotated into it once.
+#[inline(always)]
+fn sphere_cone_batch(
+    sphere: &SphereSolidAngle,
+    radiance: f64,
+    normal: DVec3,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    let scale = radiance * sphere.solid_angle();
+    let cone = *sphere.cone();
+    let n_local = sphere.frame().to_local(normal);
+    let mut hits = 0u64;
+    for (i, o) in out.iter_mut().enumerate() {
+        let w = cone.sample(block.u(i));
+        let f = scale * n_local.dot(w).max(0.0);
+        hits += u64::from(f != 0.0);
+        *o += f;
+    }
+    [hits, 0]
+}
+
+/// `f` itself: a closure given here can carry `#[inline(always)]` (an
+/// attribute Rust accepts on a closure in argument position only), so that
+/// it is compiled into the kernel's loop and instruction set.
+#[inline(always)]
+fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
+    f
+}
+
+/// `out[i] += f(i)` over the block, counting the non-zero values.
+#[inline(always)]
+fn single(out: &mut [f64], f: impl Fn(usize) -> f64) -> PartHits {
+    let mut hits = 0u64;
+    for (i, o) in out.iter_mut().enumerate() {
+        let v = f(i);
+        hits += u64::from(v != 0.0);
+        *o += v;
+    }
+    [hits, 0]
+}
+
+/// The loop of `emitter`'s technique over a block, with the emitter's
+/// radiance lookup, light sampler and light density passed in (already
+/// specialised to its kind). The arithmetic is
+/// [`PreparedEmitter::evaluate_u`]'s, in the same order.
+#[inline(always)]
+fn technique_batch(
+    emitter: &PreparedEmitter,
+    receiver: &Receiver,
+    radiance: impl Fn(DVec3) -> f64,
+    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
+    light_pdf: impl Fn(DVec3) -> f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    let frame = &receiver.frame;
+    let normal = receiver.normal;
+    let radiance_cos = hoisted(
+        #[inline(always)]
+        |w: DVec3| {
+            let cos = w.dot(normal);
+            if cos > 0.0 {
+                radiance(w) * cos
+            } else {
+                0.0
+            }
+        },
+    );
+    match emitter.technique {
+        // Projected sampling and the control variate have no block kernel
+        // yet: the one-sample path, sample by sample (the same bits).
+        Technique::Projected | Technique::ControlVariate => single(
+            out,
+            #[inline(always)]
+            |i| emitter.evaluate_u(receiver, block.u(i), DVec2::ZERO),
+        ),
+        Technique::UniformHemisphere => single(
+            out,
+            #[inline(always)]
+            |i| {
+                let local = sample_uniform_hemisphere(block.u(i));
+                radiance_cos(frame.from_local(local)) / pdf_uniform_hemisphere(local)
+            },
+        ),
+        Technique::CosineHemisphere => single(
+            out,
+            #[inline(always)]
+            |i| {
+                let local = sample_cosine_hemisphere(block.u(i));
+                let w = frame.from_local(local);
+                if local.z > 0.0 {
+                    std::f64::consts::PI * radiance(w)
+                } else {
+                    0.0
+                }
+            },
+        ),
+        Technique::Light => {
+            let always_hits = emitter.light.always_hits();
+            let uniform = emitter.uniform_radiance();
+            single(
+                out,
+                #[inline(always)]
+                |i| match light_sample(block.u(i)) {
+                    Some(s) if always_hits => uniform * s.direction.dot(normal).max(0.0) / s.pdf,
+                    Some(s) => radiance_cos(s.direction) / s.pdf,
+                    None => 0.0,
+                },
+            )
+        }
+        Technique::Area => {
+            let through = hoisted(
+                #[inline(always)]
+                |s: Option<lambert_sampling::f64::LightSample>| match s {
+                    Some(s) => radiance_cos(s.direction) / s.pdf,
+                    None => 0.0,
+                },
+            );
+            match &emitter.area {
+                EmitterArea::Sphere(a, r) => single(
+                    out,
+                    #[inline(always)]
+                    |i| through(a.sample(r.point, r.normal, block.u(i))),
+                ),
+                EmitterArea::Disk(a, r) => single(
+                    out,
+                    #[inline(always)]
+                    |i| through(a.sample(r.point, r.normal, block.u(i))),
+                ),
+                EmitterArea::Polygon(a, r) => single(
+                    out,
+                    #[inline(always)]
+                    |i| through(a.sample(r.point, r.normal, block.u(i))),
+                ),
+                EmitterArea::None => [0, 0],
+            }
+        }
+        Technique::Mis(h) => mis_batch(
+            h,
+            receiver,
+            radiance_cos,
+            light_sample,
+            light_pdf,
+            block,
+            out,
+        ),
+    }
+}
+
+/// MIS: the weighted cosine-sampled value from `u` plus the weighted
+/// light-sampled value from `v` (Veach & Guibas 1995), counted apart.
+#[inline(always)]
+fn mis_batch(
+    h: Heuristic,
+    receiver: &Receiver,
+    radiance_cos: impl Fn(DVec3) -> f64,
+    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
+    light_pdf: impl Fn(DVec3) -> f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    let frame = &receiver.frame;
+    let mut hits = [0u64; 2];
+    for (i, o) in out.iter_mut().enumerate() {
+        let mut cosine = 0.0;
+        let local = sample_cosine_hemisphere(block.u(i));
+        let w = frame.from_local(local);
+        let p_cos = pdf_cosine_hemisphere(local);
+        if p_cos > 0.0 {
+            let p_light = light_pdf(w);
+            cosine = h.weight(p_cos, p_light) * radiance_cos(w) / p_cos;
+        }
+        let mut light = 0.0;
+        if let Some(s) = light_sample(block.v(i)) {
+            let local = frame.to_local(s.direction);
+            let p_cos = pdf_cosine_hemisphere(local);
+            light = h.weight(s.pdf, p_cos) * radiance_cos(s.direction) / s.pdf;
+        }
+        hits[0] += u64::from(cosine != 0.0);
+        hits[1] += u64::from(light != 0.0);
+        *o += cosine + light;
+    }
+    hits
+}

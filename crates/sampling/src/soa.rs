@@ -1,0 +1,32 @@
+//! The loop shared by the structure-of-arrays warps: one 2-D point in, one
+//! 3-D direction out, per index.
+
+/// Writes `f((ux[i], uy[i]))` to `(wx[i], wy[i], wz[i])` for every index of
+/// the shortest slice. The slices are cut to one length first, so the loop
+/// has no bounds checks and vectorises when `f` inlines branch-free.
+#[inline(always)]
+pub(crate) fn map2_to3<R: Copy, V2, V3: Into<[R; 3]>>(
+    ux: &[R],
+    uy: &[R],
+    wx: &mut [R],
+    wy: &mut [R],
+    wz: &mut [R],
+    f: impl Fn(V2) -> V3,
+) where
+    V2: From<[R; 2]>,
+{
+    let n = ux
+        .len()
+        .min(uy.len())
+        .min(wx.len())
+        .min(wy.len())
+        .min(wz.len());
+    let (ux, uy) = (&ux[..n], &uy[..n]);
+    let (wx, wy, wz) = (&mut wx[..n], &mut wy[..n], &mut wz[..n]);
+    for i in 0..n {
+        let [x, y, z] = f(V2::from([ux[i], uy[i]])).into();
+        wx[i] = x;
+        wy[i] = y;
+        wz[i] = z;
+    }
+}
