@@ -406,64 +406,52 @@ fn negative_controls_are_rejected() {
     );
 }
 
-/// A sample whose value is not finite is an error of its own that names the
-/// emitter (its index in the scene, delta lights counted) and the sample,
-/// never a "too few samples" or a NaN mean: here each of two skies of
-/// radiance 0.9·f64::MAX/π gives a finite π·L per sample under cosine
-/// sampling, and their sum overflows at the second, which is named; a sky
-/// of radiance f64::MAX gives an infinite estimate of its own.
+/// Strengths beyond the f64 range of a sum: each of two skies of radiance
+/// 0.9·f64::MAX/π gives a finite π·L per sample under cosine sampling and
+/// one of them is answered exactly; their sum, 1.8·f64::MAX, is an overflow
+/// error naming the quantity (the estimator scales strengths by a power of
+/// two, so no sample overflows on the way: `strength_scale`), as is a sky
+/// of radiance f64::MAX under any strategy.
 #[test]
-fn a_non_finite_sample_names_its_emitter_and_index() {
+fn strengths_near_the_f64_limit_are_answered_or_named_overflows() {
     use lambert_estimator::estimation::EstimateError;
     let radiance = 0.9 * f64::MAX / std::f64::consts::PI;
-    let text = format!(
-        "[receiver]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n\
-         [[emitters]]\nkind = \"point\"\nposition = [0.0, 0.0, 1.0]\nintensity = 1.0\n\
-         [[emitters]]\nkind = \"sky\"\nradiance = {radiance:e}\n\
-         [[emitters]]\nkind = \"sky\"\nradiance = {radiance:e}\n"
-    );
-    let scene = Scene::from_toml(&text).unwrap();
-    for sequence in SequenceKind::ALL {
-        let error = estimate(&scene, &config(Strategy::CosineHemisphere, sequence, 1)).unwrap_err();
-        let message = error.to_string();
-        match error {
-            EstimateError::NonFiniteSample {
-                emitter,
-                kind,
-                sample,
-                randomization,
-                value,
-                total,
-            } => {
-                assert_eq!((emitter, kind, sample), (2, "sky", 0), "{message}");
-                assert_eq!(
-                    randomization,
-                    (sequence != SequenceKind::Independent).then_some(0),
-                    "{message}"
-                );
-                assert_eq!(value, std::f64::consts::PI * radiance);
-                assert_eq!(total, f64::INFINITY);
-            }
-            other => panic!("{sequence}: {other:?}"),
+    let skies = |count: usize| {
+        let mut text = String::from(
+            "[receiver]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n\
+             [[emitters]]\nkind = \"point\"\nposition = [0.0, 0.0, 1.0]\nintensity = 1.0\n",
+        );
+        for _ in 0..count {
+            text += &format!("[[emitters]]\nkind = \"sky\"\nradiance = {radiance:e}\n");
         }
+        Scene::from_toml(&text).unwrap()
+    };
+    for sequence in SequenceKind::ALL {
+        // Cosine sampling under a sky: every sample is π·L exactly, so the
+        // mean is π·L + 1 (the point light) rounded once.
+        let one = estimate(&skies(1), &config(Strategy::CosineHemisphere, sequence, 1))
+            .unwrap_or_else(|e| panic!("{sequence}: {e}"));
+        assert_eq!(
+            one.mean,
+            std::f64::consts::PI * radiance + 1.0,
+            "{sequence}"
+        );
+        let error =
+            estimate(&skies(2), &config(Strategy::CosineHemisphere, sequence, 1)).unwrap_err();
         assert!(
-            message.contains("emitters[2] (a sky): sample 0") && message.contains("overflow"),
-            "{message}"
+            matches!(error, EstimateError::Overflow { .. })
+                && error.to_string().contains("overflowed"),
+            "{sequence}: {error:?}"
         );
     }
     let text = "[receiver]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n\
                 [[emitters]]\nkind = \"sky\"\nradiance = 1.7976931348623157e308\n";
     let scene = Scene::from_toml(text).unwrap();
-    let error = estimate(
-        &scene,
-        &config(Strategy::UniformHemisphere, SequenceKind::Independent, 1),
-    )
-    .unwrap_err();
-    assert!(
-        matches!(
-            error,
-            EstimateError::NonFiniteSample { emitter: 0, value, .. } if value == f64::INFINITY
-        ),
-        "{error:?}"
-    );
+    for strategy in Strategy::ALL {
+        let error = estimate(&scene, &config(strategy, SequenceKind::Independent, 2)).unwrap_err();
+        assert!(
+            matches!(error, EstimateError::Overflow { .. }),
+            "{strategy}: {error:?}"
+        );
+    }
 }

@@ -56,6 +56,7 @@ use crate::interval::{
 };
 use crate::statistics::{run_chunked_merge, Estimate, Mergeable, StatisticsError};
 use crate::strategy::{PartHits, PreparedEmitter, Strategy};
+use crate::strength_scale::{scaled_scene, strength_exponent, unscaled_error, unscaled_report};
 use lambert_light::scene::Scene;
 
 /// Samples per parallel chunk.
@@ -161,7 +162,9 @@ pub struct EstimateReport {
     pub ns_per_sample: f64,
     /// Variance of one sample's estimate (for efficiency 1/(V·T)); for
     /// randomized QMC, the replicate-mean variance times the samples per
-    /// replicate.
+    /// replicate. V ~ E² exceeds the f64 range for emitters strong enough
+    /// that E ≳ 1e154 (E itself still in range, [`crate::strength_scale`]):
+    /// it is then reported as f64::MAX, a lower bound.
     pub sample_variance: f64,
 }
 
@@ -342,6 +345,14 @@ pub fn estimate_with_isa(
                 config.sequence, config.samples
             ),
         });
+    }
+    let k = strength_exponent(scene);
+    if k != 0 {
+        // Emitters too strong for f64 sums: estimate at 2⁻ᵏ the strength and
+        // scale the report back (crate::strength_scale).
+        return estimate_with_isa(&scaled_scene(scene, k), config, level, isa)
+            .map_err(|e| unscaled_error(e, k))
+            .and_then(|r| unscaled_report(r, k));
     }
     let start = Instant::now();
     let (prepared, delta) = prepare(scene, config.strategy);
@@ -842,7 +853,51 @@ fn with_randomization(error: EstimateError, k: u64) -> EstimateError {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
     use lambert_light::builtin::builtin_scenes;
+    use lambert_light::emitter::Emitter;
+
+    /// The slow path that names a failed estimate's first non-finite
+    /// sample, called directly: strength scaling keeps strong emitters from
+    /// reaching it through `estimate`, so it is exercised here on a scene
+    /// prepared unscaled, two skies of radiance 0.9·f64::MAX/π behind a
+    /// point light (index 0), whose cosine samples are π·L each and whose
+    /// sum overflows at the second sky, emitters[2], in sample 0.
+    #[test]
+    fn the_first_non_finite_sample_is_named_with_its_emitter() {
+        let radiance = 0.9 * f64::MAX / std::f64::consts::PI;
+        let sky = || Emitter::Sky(lambert_light::emitter::Sky::new(radiance).unwrap());
+        let point = lambert_light::emitter::PointLight::with_intensity(DVec3::Z, 1.0).unwrap();
+        let receiver = lambert_light::receiver::Receiver::new(DVec3::ZERO, DVec3::Z).unwrap();
+        let scene = Scene::new(receiver, vec![Emitter::Point(point), sky(), sky()]).unwrap();
+        let (prepared, _) = prepare(&scene, Strategy::CosineHemisphere);
+        let expect = |error: EstimateError, randomization: Option<u64>| match error {
+            EstimateError::NonFiniteSample {
+                emitter,
+                kind,
+                sample,
+                randomization: r,
+                value,
+                total,
+            } => {
+                assert_eq!((emitter, kind, sample, r), (2, "sky", 0, randomization));
+                assert_eq!(value, std::f64::consts::PI * radiance);
+                assert_eq!(total, f64::INFINITY);
+            }
+            other => panic!("{other:?}"),
+        };
+        expect(first_non_finite_independent(&prepared, &scene, 1, 8), None);
+        let sobol = first_non_finite_in(&prepared, &scene, &Sobol::new(1), 8);
+        expect(with_randomization(sobol, 3), Some(3));
+        let message =
+            with_randomization(first_non_finite_in(&prepared, &scene, &Sobol::new(1), 8), 3)
+                .to_string();
+        assert!(
+            message.contains("emitters[2] (a sky): sample 0 of randomization 3")
+                && message.contains("overflow"),
+            "{message}"
+        );
+    }
 
     /// FNV-1a over the bytes of 64-bit words: a fixed digest.
     fn digest(words: impl IntoIterator<Item = u64>) -> u64 {

@@ -14,6 +14,7 @@ pub mod interval;
 pub mod point;
 pub mod statistics;
 pub mod strategy;
+pub mod strength_scale;
 
 pub use statistics::{
     run_chunked, run_samples, ConfidenceInterval, Estimate, NeumaierSum, StatisticsError, Timing,

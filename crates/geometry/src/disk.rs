@@ -3,7 +3,8 @@
 macro_rules! disk_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
         use crate::frame::$p::Frame;
-        use crate::plane::$p::{plane_distance, point_on_plane};
+        use crate::batch::$p::{nearest_lanes, occludes_lanes, RayBatch};
+        use crate::plane::$p::{plane_lane, point_on_plane};
         use crate::precision::$p::{wide3, Real, V2, V3, PI};
         use crate::ray::$p::{Hit, Intersect, Ray};
         use crate::solid_angle::$p::disk_solid_angle_hs;
@@ -98,6 +99,16 @@ macro_rules! disk_impl {
                 (h.abs(), (v - n * h).length())
             }
 
+            /// The test without branches, for one ray or a batch: whether
+            /// the ray meets the disk (rim included) at a finite t > 0, and
+            /// t.
+            #[inline(always)]
+            fn lane(&self, origin: V3, direction: V3) -> (bool, Real) {
+                let (hit, t) = plane_lane(origin, direction, self.center, self.frame.z);
+                let p = origin + direction * t - self.center;
+                (hit & (p.length_squared() <= self.radius * self.radius), t)
+            }
+
             /// The solid angle, in steradians, that the disk subtends at
             /// `point` (either side); 0 in its plane.
             pub fn solid_angle_from(&self, point: V3) -> Real {
@@ -109,26 +120,55 @@ macro_rules! disk_impl {
         impl Intersect for Disk {
             #[inline]
             fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real> {
-                let t = plane_distance(ray, self.center, self.frame.z)?;
-                let p = ray.origin + ray.direction * t - self.center;
-                (t < t_max && p.length_squared() <= self.radius * self.radius).then_some(t)
+                let (hit, t) = self.lane(ray.origin, ray.direction);
+                (hit && t < t_max).then_some(t)
+            }
+
+            #[inline(always)]
+            fn nearest_in_batch(
+                &self,
+                rays: &RayBatch,
+                id: u32,
+                nearest: &mut [Real],
+                ids: &mut [u32],
+            ) {
+                nearest_lanes(rays, id, nearest, ids, |o, d| self.lane(o, d));
+            }
+
+            #[inline(always)]
+            fn occludes_in_batch(&self, rays: &RayBatch, t_max: &[Real], blocked: &mut [bool]) {
+                occludes_lanes(rays, t_max, blocked, |o, d| self.lane(o, d));
             }
 
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
                 let t = self.hit_distance(ray, t_max)?;
-                let (point, error) = point_on_plane(ray, t, self.center, self.frame.z);
-                let local = self.frame.to_local(point - self.center);
-                let rho = local.x.hypot(local.y);
-                let phi = local.y.atan2(local.x);
-                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
                 Some(Hit {
+                    uv: self.surface_parameters(ray, t),
+                    ..self.hit_at(ray, t)
+                })
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let (point, error) = point_on_plane(ray, t, self.center, self.frame.z);
+                Hit {
                     distance: t,
                     point,
                     normal: self.frame.z,
                     error,
-                    uv: V2::new((rho / self.radius).min(1.0), phi / (2.0 * PI)),
-                })
+                    uv: V2::ZERO,
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let (point, _) = point_on_plane(ray, t, self.center, self.frame.z);
+                let local = self.frame.to_local(point - self.center);
+                let rho = local.x.hypot(local.y);
+                let phi = local.y.atan2(local.x);
+                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+                V2::new((rho / self.radius).min(1.0), phi / (2.0 * PI))
             }
         }
     };

@@ -40,6 +40,7 @@
 
 pub mod precision;
 
+mod batch;
 mod clip;
 mod disk;
 mod error;
@@ -58,6 +59,7 @@ pub use error::GeometryError;
 /// The public items of one precision, re-exported once.
 macro_rules! public_api {
     ($p:ident) => {
+        pub use crate::batch::$p::RayBatch;
         pub use crate::clip::$p::clip_to_half_space;
         pub use crate::disk::$p::Disk;
         pub use crate::frame::$p::Frame;

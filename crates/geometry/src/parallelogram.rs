@@ -2,7 +2,8 @@
 
 macro_rules! parallelogram_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
-        use crate::plane::$p::{plane_distance, point_on_plane};
+        use crate::batch::$p::{nearest_lanes, occludes_lanes, RayBatch};
+        use crate::plane::$p::{plane_lane, point_on_plane};
         use crate::precision::$p::{wide3, Real, V2, V3};
         use crate::ray::$p::{Hit, Intersect, Ray};
         use crate::solid_angle::$p::triangle_solid_angle;
@@ -131,6 +132,17 @@ macro_rules! parallelogram_impl {
                 triangle_solid_angle(point, a, b, c) + triangle_solid_angle(point, a, c, d)
             }
 
+            /// The test without branches, for one ray or a batch: whether
+            /// the ray meets the parallelogram (edges included) at a finite
+            /// t > 0, and t.
+            #[inline(always)]
+            fn lane(&self, origin: V3, direction: V3) -> (bool, Real) {
+                let (hit, t) = plane_lane(origin, direction, self.corner, self.normal);
+                let st = self.parameters(Ray::new(origin, direction).at(t));
+                let inside = (st.x >= 0.0) & (st.x <= 1.0) & (st.y >= 0.0) & (st.y <= 1.0);
+                (hit & inside, t)
+            }
+
             /// The parameters (s, t) of `point` (on the plane).
             #[inline]
             pub fn parameters(&self, point: V3) -> V2 {
@@ -145,23 +157,51 @@ macro_rules! parallelogram_impl {
         impl Intersect for Parallelogram {
             #[inline]
             fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real> {
-                let t = plane_distance(ray, self.corner, self.normal)?;
-                let st = self.parameters(ray.at(t));
-                (t < t_max && st.x >= 0.0 && st.x <= 1.0 && st.y >= 0.0 && st.y <= 1.0)
-                    .then_some(t)
+                let (hit, t) = self.lane(ray.origin, ray.direction);
+                (hit && t < t_max).then_some(t)
+            }
+
+            #[inline(always)]
+            fn nearest_in_batch(
+                &self,
+                rays: &RayBatch,
+                id: u32,
+                nearest: &mut [Real],
+                ids: &mut [u32],
+            ) {
+                nearest_lanes(rays, id, nearest, ids, |o, d| self.lane(o, d));
+            }
+
+            #[inline(always)]
+            fn occludes_in_batch(&self, rays: &RayBatch, t_max: &[Real], blocked: &mut [bool]) {
+                occludes_lanes(rays, t_max, blocked, |o, d| self.lane(o, d));
             }
 
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
                 let t = self.hit_distance(ray, t_max)?;
-                let (point, error) = point_on_plane(ray, t, self.corner, self.normal);
                 Some(Hit {
+                    uv: self.surface_parameters(ray, t),
+                    ..self.hit_at(ray, t)
+                })
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let (point, error) = point_on_plane(ray, t, self.corner, self.normal);
+                Hit {
                     distance: t,
                     point,
                     normal: self.normal,
                     error,
-                    uv: self.parameters(point).clamp(V2::ZERO, V2::ONE),
-                })
+                    uv: V2::ZERO,
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let (point, _) = point_on_plane(ray, t, self.corner, self.normal);
+                self.parameters(point).clamp(V2::ZERO, V2::ONE)
             }
         }
     };

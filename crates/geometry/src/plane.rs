@@ -4,6 +4,7 @@ macro_rules! plane_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
         use crate::frame::$p::Frame;
         use crate::precision::$p::{wide3, Real, V2, V3};
+        use crate::batch::$p::{nearest_lanes, occludes_lanes, RayBatch};
         use crate::ray::$p::{gamma, Hit, Intersect, Ray};
         use crate::validate;
         use crate::validate::$p::unit_vector;
@@ -15,9 +16,17 @@ macro_rules! plane_impl {
         /// behind it.
         #[inline]
         pub(crate) fn plane_distance(ray: &Ray, on_plane: V3, normal: V3) -> Option<Real> {
-            let denom = normal.dot(ray.direction);
-            let t = normal.dot(on_plane - ray.origin) / denom;
-            (t > 0.0 && t.is_finite()).then_some(t)
+            let (hit, t) = plane_lane(ray.origin, ray.direction, on_plane, normal);
+            hit.then_some(t)
+        }
+
+        /// [`plane_distance`] without branches, for batches: (whether the
+        /// plane is met at a finite t > 0, t).
+        #[inline(always)]
+        pub(crate) fn plane_lane(origin: V3, direction: V3, on_plane: V3, normal: V3) -> (bool, Real) {
+            let denom = normal.dot(direction);
+            let t = normal.dot(on_plane - origin) / denom;
+            ((t > 0.0) & t.is_finite(), t)
         }
 
         /// The point at `t` along `ray`, projected onto the plane through
@@ -117,18 +126,50 @@ macro_rules! plane_impl {
                 plane_distance(ray, self.point, self.frame.z).filter(|&t| t < t_max)
             }
 
+            #[inline(always)]
+            fn nearest_in_batch(
+                &self,
+                rays: &RayBatch,
+                id: u32,
+                nearest: &mut [Real],
+                ids: &mut [u32],
+            ) {
+                let (q, n) = (self.point, self.frame.z);
+                nearest_lanes(rays, id, nearest, ids, |o, d| plane_lane(o, d, q, n));
+            }
+
+            #[inline(always)]
+            fn occludes_in_batch(&self, rays: &RayBatch, t_max: &[Real], blocked: &mut [bool]) {
+                let (q, n) = (self.point, self.frame.z);
+                occludes_lanes(rays, t_max, blocked, |o, d| plane_lane(o, d, q, n));
+            }
+
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
                 let t = self.hit_distance(ray, t_max)?;
-                let (point, error) = point_on_plane(ray, t, self.point, self.frame.z);
-                let local = point - self.point;
                 Some(Hit {
+                    uv: self.surface_parameters(ray, t),
+                    ..self.hit_at(ray, t)
+                })
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let (point, error) = point_on_plane(ray, t, self.point, self.frame.z);
+                Hit {
                     distance: t,
                     point,
                     normal: self.frame.z,
                     error,
-                    uv: V2::new(local.dot(self.frame.x), local.dot(self.frame.y)),
-                })
+                    uv: V2::ZERO,
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let (point, _) = point_on_plane(ray, t, self.point, self.frame.z);
+                let local = point - self.point;
+                V2::new(local.dot(self.frame.x), local.dot(self.frame.y))
             }
         }
     };

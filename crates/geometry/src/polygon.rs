@@ -231,15 +231,29 @@ macro_rules! polygon_impl {
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
                 let t = self.hit_distance(ray, t_max)?;
-                let (point, error) = point_on_plane(ray, t, self.vertices[0], self.frame.z);
-                let local = point - self.vertices[0];
                 Some(Hit {
+                    uv: self.surface_parameters(ray, t),
+                    ..self.hit_at(ray, t)
+                })
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let (point, error) = point_on_plane(ray, t, self.vertices[0], self.frame.z);
+                Hit {
                     distance: t,
                     point,
                     normal: self.frame.z,
                     error,
-                    uv: V2::new(local.dot(self.frame.x), local.dot(self.frame.y)),
-                })
+                    uv: V2::ZERO,
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let (point, _) = point_on_plane(ray, t, self.vertices[0], self.frame.z);
+                let local = point - self.vertices[0];
+                V2::new(local.dot(self.frame.x), local.dot(self.frame.y))
             }
         }
     };

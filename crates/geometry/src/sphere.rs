@@ -3,6 +3,7 @@
 macro_rules! sphere_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
         use crate::precision::$p::{wide3, Real, V2, V3, PI};
+        use crate::batch::$p::{nearest_lanes, occludes_lanes, RayBatch};
         use crate::ray::$p::{gamma, Hit, Intersect, Ray};
         use crate::validate;
         use crate::GeometryError;
@@ -21,7 +22,9 @@ macro_rules! sphere_impl {
         ///   line, the small root as c/q where the other form would cancel.
         ///   The hit point is projected back onto the sphere, which bounds
         ///   its error by γ₅ of its offset from the center plus the
-        ///   rounding of adding the center (pbrt-v4 §6.8.5).
+        ///   rounding of adding the center (pbrt-v4 §6.8.5);
+        /// - surface parameters (φ/2π, θ/π) of the outward normal, φ from
+        ///   +x about +z in [0, 2π), θ from +z.
         ///
         /// ```
         #[doc = concat!("use lambert_geometry::", stringify!($p), "::{Intersect, Ray, Sphere};")]
@@ -106,53 +109,90 @@ macro_rules! sphere_impl {
                 2.0 * PI * s * s / (1.0 + c)
             }
 
-            /// The roots (near, far) of the ray's quadratic, if it meets the
-            /// sphere's surface at all.
-            #[inline]
-            fn roots(&self, ray: &Ray) -> Option<(Real, Real)> {
-                let v = ray.origin - self.center;
-                let b = v.dot(ray.direction);
-                let perp = v - ray.direction * b;
-                let disc = (self.radius - perp.length()) * (self.radius + perp.length());
-                if disc < 0.0 {
-                    return None;
-                }
+            /// The test without branches, for one ray or a batch: whether
+            /// the ray from `origin` along `direction` meets the sphere at
+            /// some t > 0, and the nearest such t (the far root from
+            /// inside).
+            #[inline(always)]
+            fn lane(&self, origin: V3, direction: V3) -> (bool, Real) {
+                let v = origin - self.center;
+                let b = v.dot(direction);
+                let perp = v - direction * b;
+                let perp_length = perp.length();
+                let disc = (self.radius - perp_length) * (self.radius + perp_length);
+                // NaN when the line misses (disc < 0): discarded below.
                 let root = disc.sqrt();
                 let c = v.length_squared() - self.radius * self.radius;
                 // q = −(b + sign(b)·√disc); the roots are q and c/q.
                 let q = if b > 0.0 { -(b + root) } else { -b + root };
                 let other = if q != 0.0 { c / q } else { 0.0 };
-                Some(if q < other { (q, other) } else { (other, q) })
+                let (t0, t1) = if q < other { (q, other) } else { (other, q) };
+                let t = if t0 > 0.0 { t0 } else { t1 };
+                (!(disc < 0.0) & (t > 0.0), t)
+            }
+
+            /// The hit point at `t` along `ray`, relative to the center and
+            /// projected back onto the surface: |offset| = r up to one
+            /// rounding.
+            #[inline]
+            fn surface_offset(&self, ray: &Ray, t: Real) -> V3 {
+                let raw = ray.at(t) - self.center;
+                raw * (self.radius / raw.length())
             }
         }
 
         impl Intersect for Sphere {
             #[inline]
             fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real> {
-                let (t0, t1) = self.roots(ray)?;
-                let t = if t0 > 0.0 { t0 } else { t1 };
-                (t > 0.0 && t < t_max).then_some(t)
+                let (hit, t) = self.lane(ray.origin, ray.direction);
+                (hit && t < t_max).then_some(t)
+            }
+
+            #[inline(always)]
+            fn nearest_in_batch(
+                &self,
+                rays: &RayBatch,
+                id: u32,
+                nearest: &mut [Real],
+                ids: &mut [u32],
+            ) {
+                nearest_lanes(rays, id, nearest, ids, |o, d| self.lane(o, d));
+            }
+
+            #[inline(always)]
+            fn occludes_in_batch(&self, rays: &RayBatch, t_max: &[Real], blocked: &mut [bool]) {
+                occludes_lanes(rays, t_max, blocked, |o, d| self.lane(o, d));
             }
 
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
                 let t = self.hit_distance(ray, t_max)?;
-                // Back onto the surface: |offset| = r up to one rounding.
-                let raw = ray.at(t) - self.center;
-                let offset = raw * (self.radius / raw.length());
+                Some(Hit {
+                    uv: self.surface_parameters(ray, t),
+                    ..self.hit_at(ray, t)
+                })
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                let offset = self.surface_offset(ray, t);
                 let point = self.center + offset;
-                let error = offset.abs() * gamma(5) + point.abs() * gamma(1);
-                let normal = offset / self.radius;
+                Hit {
+                    distance: t,
+                    point,
+                    normal: (offset / self.radius).normalize(),
+                    error: offset.abs() * gamma(5) + point.abs() * gamma(1),
+                    uv: V2::ZERO,
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                let normal = self.surface_offset(ray, t) / self.radius;
                 let phi = normal.y.atan2(normal.x);
                 let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
                 let theta = normal.z.clamp(-1.0, 1.0).acos();
-                Some(Hit {
-                    distance: t,
-                    point,
-                    normal: normal.normalize(),
-                    error,
-                    uv: V2::new(phi / (2.0 * PI), theta / PI),
-                })
+                V2::new(phi / (2.0 * PI), theta / PI)
             }
         }
     };

@@ -123,17 +123,38 @@ macro_rules! triangle_impl {
                 } else {
                     2
                 };
-                if ad[kz] == 0.0 {
+                // (x, y, z) → (k_x, k_y, k_z) with k_x = k_z + 1, k_y = k_x + 1
+                // (mod 3): one copy of the test per permutation, so the
+                // permutation costs no branch or index per vector.
+                match kz {
+                    0 => self.hit_permuted(ray, t_max, |v: V3| V3::new(v.y, v.z, v.x)),
+                    1 => self.hit_permuted(ray, t_max, |v: V3| V3::new(v.z, v.x, v.y)),
+                    _ => self.hit_permuted(ray, t_max, |v: V3| v),
+                }
+            }
+
+            /// The watertight test in the coordinates `perm` gives, whose
+            /// z is the largest component of the ray's direction.
+            #[inline(always)]
+            fn hit_permuted(
+                &self,
+                ray: &Ray,
+                t_max: Real,
+                perm: impl Fn(V3) -> V3,
+            ) -> Option<(Real, Real, Real, Real)> {
+                let dp = perm(ray.direction);
+                if dp.z == 0.0 {
                     return None;
                 }
-                let kx = if kz == 2 { 0 } else { kz + 1 };
-                let ky = if kx == 2 { 0 } else { kx + 1 };
-                let perm = |v: V3| V3::new(v[kx], v[ky], v[kz]);
-                let dp = perm(d);
                 let sx = -dp.x / dp.z;
                 let sy = -dp.y / dp.z;
                 let sz = 1.0 / dp.z;
-                let [a, b, c] = self.vertices.map(|v| perm(v - ray.origin));
+                let [v0, v1, v2] = self.vertices;
+                let (a, b, c) = (
+                    perm(v0 - ray.origin),
+                    perm(v1 - ray.origin),
+                    perm(v2 - ray.origin),
+                );
                 // Shear so the ray is +z (z is scaled later).
                 let (ax, ay) = (a.x + sx * a.z, a.y + sy * a.z);
                 let (bx, by) = (b.x + sx * b.z, b.y + sy * b.z);
@@ -179,6 +200,31 @@ macro_rules! triangle_impl {
                     3.0 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv.abs();
                 (t > delta_t).then_some((t, b0, b1, b2))
             }
+
+            /// The hit record of the test's (t, b₀, b₁, b₂).
+            #[inline]
+            fn record(&self, (t, b0, b1, b2): (Real, Real, Real, Real)) -> Hit {
+                let [a, b, c] = self.vertices;
+                let point = a * b0 + b * b1 + c * b2;
+                let error = ((a * b0).abs() + (b * b1).abs() + (c * b2).abs()) * gamma(7);
+                Hit {
+                    distance: t,
+                    point,
+                    normal: self.normal,
+                    error,
+                    uv: V2::new(b1, b2),
+                }
+            }
+
+            /// The full record of the hit at `t`, from the test run again.
+            #[inline]
+            fn hit_at_with_parameters(&self, ray: &Ray, t: Real) -> Hit {
+                let hit = self
+                    .hit(ray, Real::INFINITY)
+                    .expect("t must come from hit_distance for this ray");
+                debug_assert_eq!(hit.0, t);
+                self.record(hit)
+            }
         }
 
         impl Intersect for Triangle {
@@ -189,17 +235,21 @@ macro_rules! triangle_impl {
 
             #[inline]
             fn intersect(&self, ray: &Ray, t_max: Real) -> Option<Hit> {
-                let (t, b0, b1, b2) = self.hit(ray, t_max)?;
-                let [a, b, c] = self.vertices;
-                let point = a * b0 + b * b1 + c * b2;
-                let error = ((a * b0).abs() + (b * b1).abs() + (c * b2).abs()) * gamma(7);
-                Some(Hit {
-                    distance: t,
-                    point,
-                    normal: self.normal,
-                    error,
-                    uv: V2::new(b1, b2),
-                })
+                self.hit(ray, t_max).map(|h| self.record(h))
+            }
+
+            #[inline]
+            fn hit_at(&self, ray: &Ray, t: Real) -> Hit {
+                // The point comes from the test's barycentrics: run it again.
+                Hit {
+                    uv: V2::ZERO,
+                    ..self.hit_at_with_parameters(ray, t)
+                }
+            }
+
+            #[inline]
+            fn surface_parameters(&self, ray: &Ray, t: Real) -> V2 {
+                self.hit_at_with_parameters(ray, t).uv
             }
         }
     };

@@ -2,7 +2,7 @@
 //! over them: brute force for a few primitives, a BVH above
 //! [`BVH_THRESHOLD`].
 
-use lambert_geometry::f64::{Hit, Ray};
+use lambert_geometry::f64::{Hit, Ray, RayBatch};
 
 use crate::bvh::Bvh;
 use crate::shape::Shape;
@@ -119,6 +119,18 @@ impl Aggregate {
     /// the winner only.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<(Hit, &Primitive)> {
+        let (p, t) = self.nearest(ray, t_max)?;
+        let hit = Hit {
+            uv: p.shape.surface_parameters(ray, t),
+            ..p.shape.hit_at(ray, t)
+        };
+        Some((hit, p))
+    }
+
+    /// The primitive with the nearest hit along `ray` before `t_max`, and
+    /// the hit's distance (no hit record: [`Shape::hit_at`] builds it).
+    #[inline]
+    pub fn nearest(&self, ray: &Ray, t_max: f64) -> Option<(&Primitive, f64)> {
         let mut best: Option<(&Primitive, f64)> = None;
         let mut t_max = t_max;
         let test = |p: &'_ Primitive, t_max: f64| p.shape.hit_distance(ray, t_max);
@@ -144,9 +156,91 @@ impl Aggregate {
                 t_max = t;
             }
         }
-        let (p, _) = best?;
-        // The same decision as hit_distance, so the record exists.
-        p.shape.intersect(ray, f64::INFINITY).map(|h| (h, p))
+        best
+    }
+
+    /// Primitive `k` in the order of [`Aggregate::primitives`] (the ids
+    /// the batch queries report).
+    ///
+    /// # Panics
+    /// If `k` ≥ [`Aggregate::len`].
+    #[inline]
+    pub fn primitive(&self, k: u32) -> &Primitive {
+        let k = k as usize;
+        match self.bounded.get(k) {
+            Some(p) => p,
+            None => &self.unbounded[k - self.bounded.len()],
+        }
+    }
+
+    /// [`Aggregate::nearest`] for every ray of a batch: where ray i meets a
+    /// primitive at 0 < t < `nearest[i]`, `nearest[i]` becomes the nearest
+    /// such t and `ids[i]` that primitive's index ([`Aggregate::primitive`]);
+    /// rays that meet none keep both entries. The same decisions and
+    /// distances as [`Aggregate::nearest`], to the bit; without a BVH the
+    /// rays are tested shape by shape in vectorised loops.
+    ///
+    /// # Panics
+    /// If `nearest` or `ids` is not as long as `rays`.
+    #[inline(always)]
+    pub fn nearest_in_batch(&self, rays: &RayBatch, nearest: &mut [f64], ids: &mut [u32]) {
+        assert!(nearest.len() == rays.len() && ids.len() == rays.len());
+        match &self.bvh {
+            Some(bvh) => {
+                for i in 0..rays.len() {
+                    let ray = rays.get(i);
+                    let test = |k: usize, t: f64| self.bounded[k].shape.hit_distance(&ray, t);
+                    if let Some((k, t)) = bvh.nearest(&ray, nearest[i], test) {
+                        nearest[i] = t;
+                        ids[i] = k as u32;
+                    }
+                }
+            }
+            None => {
+                for (k, p) in self.bounded.iter().enumerate() {
+                    p.shape.nearest_in_batch(rays, k as u32, nearest, ids);
+                }
+            }
+        }
+        let offset = self.bounded.len();
+        for (k, p) in self.unbounded.iter().enumerate() {
+            p.shape
+                .nearest_in_batch(rays, (offset + k) as u32, nearest, ids);
+        }
+    }
+
+    /// [`Aggregate::occluded`] for every ray of a batch: sets `blocked[i]`
+    /// when anything is hit along ray i before `t_max[i]` (rays already
+    /// blocked stay so). A ray with `t_max[i]` ≤ 0 or NaN is never blocked
+    /// (a caller switches rays off that way).
+    ///
+    /// # Panics
+    /// If `t_max` or `blocked` is not as long as `rays`.
+    #[inline(always)]
+    pub fn occludes_in_batch(&self, rays: &RayBatch, t_max: &[f64], blocked: &mut [bool]) {
+        assert!(t_max.len() == rays.len() && blocked.len() == rays.len());
+        for p in &self.unbounded {
+            p.shape.occludes_in_batch(rays, t_max, blocked);
+        }
+        match &self.bvh {
+            Some(bvh) => {
+                for i in 0..rays.len() {
+                    // Nothing lies at 0 < t < t_max ≤ 0 (or NaN).
+                    if !blocked[i] && t_max[i] > 0.0 {
+                        let ray = rays.get(i);
+                        let hits = |k: usize, t: f64| {
+                            self.bounded[k].shape.hit_distance(&ray, t).is_some()
+                        };
+                        blocked[i] = bvh.any(&ray, t_max[i], hits);
+                    }
+                }
+            }
+            None => {
+                for p in &self.bounded {
+                    p.shape.occludes_in_batch(rays, t_max, blocked);
+                }
+            }
+        }
     }
 
     /// Whether anything is hit along `ray` before `t_max` (shadow rays).

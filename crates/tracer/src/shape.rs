@@ -1,8 +1,8 @@
 //! The shapes a scene is made of: the geometry crate's, behind one enum.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use lambert_geometry::f64::{
-    ConvexPolygon, Disk, Hit, Intersect, Parallelogram, Plane, Ray, Sphere, Triangle,
+    ConvexPolygon, Disk, Hit, Intersect, Parallelogram, Plane, Ray, RayBatch, Sphere, Triangle,
 };
 
 use crate::aabb::Aabb;
@@ -89,6 +89,65 @@ impl Shape {
             Shape::Triangle(s) => s.intersect(ray, t_max),
             Shape::Parallelogram(s) => s.intersect(ray, t_max),
             Shape::Polygon(s) => s.intersect(ray, t_max),
+        }
+    }
+
+    /// The record of the hit at `t`, a distance [`Shape::hit_distance`]
+    /// returned, with the surface parameters left at zero (see
+    /// `lambert_geometry`'s `Intersect::hit_at`).
+    #[inline(always)]
+    pub fn hit_at(&self, ray: &Ray, t: f64) -> Hit {
+        match self {
+            Shape::Sphere(s) => s.hit_at(ray, t),
+            Shape::Plane(s) => s.hit_at(ray, t),
+            Shape::Disk(s) => s.hit_at(ray, t),
+            Shape::Triangle(s) => s.hit_at(ray, t),
+            Shape::Parallelogram(s) => s.hit_at(ray, t),
+            Shape::Polygon(s) => s.hit_at(ray, t),
+        }
+    }
+
+    /// The surface parameters of the hit at `t`, a distance
+    /// [`Shape::hit_distance`] returned: the `uv` of [`Shape::intersect`].
+    #[inline]
+    pub fn surface_parameters(&self, ray: &Ray, t: f64) -> DVec2 {
+        match self {
+            Shape::Sphere(s) => s.surface_parameters(ray, t),
+            Shape::Plane(s) => s.surface_parameters(ray, t),
+            Shape::Disk(s) => s.surface_parameters(ray, t),
+            Shape::Triangle(s) => s.surface_parameters(ray, t),
+            Shape::Parallelogram(s) => s.surface_parameters(ray, t),
+            Shape::Polygon(s) => s.surface_parameters(ray, t),
+        }
+    }
+
+    /// For every ray i of `rays` that meets the shape at 0 < t <
+    /// `nearest[i]`: `nearest[i] = t`, `ids[i] = id` (see
+    /// `lambert_geometry`'s `Intersect::nearest_in_batch`).
+    #[inline(always)]
+    pub fn nearest_in_batch(&self, rays: &RayBatch, id: u32, nearest: &mut [f64], ids: &mut [u32]) {
+        match self {
+            Shape::Sphere(s) => s.nearest_in_batch(rays, id, nearest, ids),
+            Shape::Plane(s) => s.nearest_in_batch(rays, id, nearest, ids),
+            Shape::Disk(s) => s.nearest_in_batch(rays, id, nearest, ids),
+            Shape::Triangle(s) => s.nearest_in_batch(rays, id, nearest, ids),
+            Shape::Parallelogram(s) => s.nearest_in_batch(rays, id, nearest, ids),
+            Shape::Polygon(s) => s.nearest_in_batch(rays, id, nearest, ids),
+        }
+    }
+
+    /// Sets `blocked[i]` for every ray i of `rays` that meets the shape at
+    /// 0 < t < `t_max[i]` (see `lambert_geometry`'s
+    /// `Intersect::occludes_in_batch`).
+    #[inline(always)]
+    pub fn occludes_in_batch(&self, rays: &RayBatch, t_max: &[f64], blocked: &mut [bool]) {
+        match self {
+            Shape::Sphere(s) => s.occludes_in_batch(rays, t_max, blocked),
+            Shape::Plane(s) => s.occludes_in_batch(rays, t_max, blocked),
+            Shape::Disk(s) => s.occludes_in_batch(rays, t_max, blocked),
+            Shape::Triangle(s) => s.occludes_in_batch(rays, t_max, blocked),
+            Shape::Parallelogram(s) => s.occludes_in_batch(rays, t_max, blocked),
+            Shape::Polygon(s) => s.occludes_in_batch(rays, t_max, blocked),
         }
     }
 

@@ -46,6 +46,16 @@ impl Texture {
         }
     }
 
+    /// The reflectance at the surface parameters `uv()`, called only for a
+    /// texture that varies (a tracer computes the parameters lazily).
+    #[inline]
+    pub fn at_lazy(&self, uv: impl FnOnce() -> DVec2) -> Rgb {
+        match *self {
+            Texture::Constant(c) => c,
+            Texture::Checker { .. } => self.at(uv()),
+        }
+    }
+
     /// Checks every reflectance is in [0, 1] and the scale finite and
     /// positive (errors name the field: `albedo`, `even`, `odd`, `scale`).
     pub fn validate(&self, field: &str) -> Result<(), TracerError> {

@@ -63,6 +63,41 @@ impl Emitter {
         }
     }
 
+    /// The emitter's strength, the factor every irradiance it gives is
+    /// proportional to: radiance L (W m⁻² sr⁻¹) for the sky, caps, spheres,
+    /// disks and polygons; intensity I (W sr⁻¹) for a point light;
+    /// irradiance E⊥ (W m⁻²) for a directional light.
+    pub fn strength(&self) -> f64 {
+        match self {
+            Emitter::Sky(s) => s.radiance,
+            Emitter::SkyCap(c) => c.radiance,
+            Emitter::Sphere(s) => s.radiance,
+            Emitter::Disk(d) => d.radiance,
+            Emitter::Polygon(p) => p.radiance,
+            Emitter::Point(p) => p.intensity,
+            Emitter::Directional(d) => d.irradiance,
+        }
+    }
+
+    /// This emitter with its [`strength`](Self::strength) multiplied by
+    /// `factor`, its geometry unchanged. Irradiance is linear in strength,
+    /// so every irradiance it gives is multiplied by `factor`; for a power
+    /// of two the product is exact while it stays in the normal range,
+    /// which is how estimates of extreme radiances are kept in range.
+    pub fn with_strength_scaled(&self, factor: f64) -> Emitter {
+        let mut e = self.clone();
+        match &mut e {
+            Emitter::Sky(s) => s.radiance *= factor,
+            Emitter::SkyCap(c) => c.radiance *= factor,
+            Emitter::Sphere(s) => s.radiance *= factor,
+            Emitter::Disk(d) => d.radiance *= factor,
+            Emitter::Polygon(p) => p.radiance *= factor,
+            Emitter::Point(p) => p.intensity *= factor,
+            Emitter::Directional(d) => d.irradiance *= factor,
+        }
+        e
+    }
+
     /// Whether the emitter is a delta light (point or directional), whose
     /// irradiance is added exactly rather than estimated.
     pub fn is_delta(&self) -> bool {

@@ -55,6 +55,70 @@ pub struct Direct {
     pub highlight: Rgb,
 }
 
+impl Direct {
+    /// Adds the light of a delta light that the shading point sees (its
+    /// shadow ray found nothing): E += (I/r²)·cos, and its Blinn–Phong
+    /// highlight f(n·h)·E with h the half vector of the light's direction
+    /// and `wo`.
+    #[inline]
+    pub(super) fn add(
+        &mut self,
+        light: &DeltaLight,
+        n: DVec3,
+        wo: DVec3,
+        highlight: Option<&Highlight>,
+    ) {
+        let e_light = light.scale * light.cos;
+        self.irradiance += e_light;
+        if let Some(h) = highlight {
+            let half = (light.direction + wo).normalize_or_zero();
+            self.highlight += h.brdf(n.dot(half)) * e_light;
+        }
+    }
+}
+
+/// A delta light (point or directional) seen from a shading point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DeltaLight {
+    /// The unit direction toward the light.
+    pub direction: DVec3,
+    /// Its distance (∞ for a directional light).
+    pub distance: f64,
+    /// The irradiance it gives a surface facing it: I/r², or a directional
+    /// light's E.
+    pub scale: f64,
+    /// n·direction, the cosine at the shading point.
+    pub cos: f64,
+}
+
+impl DeltaLight {
+    /// Emitter `e` seen from `point` with unit normal `n`, if it is a delta
+    /// light (and, for a point light, not at `point` itself). The light
+    /// counts, after its shadow ray, unless `cos` ≤ 0.
+    #[inline]
+    pub fn seen_from(e: &Emitter, point: DVec3, n: DVec3) -> Option<DeltaLight> {
+        let (direction, distance, scale) = match e {
+            Emitter::Point(p) => {
+                let v = p.position - point;
+                let r2 = v.length_squared();
+                if !(r2 > 0.0) {
+                    return None;
+                }
+                let r = r2.sqrt();
+                (v / r, r, p.intensity / r2)
+            }
+            Emitter::Directional(d) => (d.direction, f64::INFINITY, d.irradiance),
+            _ => return None,
+        };
+        Some(DeltaLight {
+            direction,
+            distance,
+            scale,
+            cos: n.dot(direction),
+        })
+    }
+}
+
 /// One pixel's tracer: the scene, the configuration, the pixel's seed and
 /// its ray counts.
 pub struct Context<'a> {
@@ -123,29 +187,13 @@ impl<'a> Context<'a> {
     ) -> Result<Direct, TracerError> {
         let mut out = Direct::default();
         for e in self.scene.emitters() {
-            let (l, distance, scale) = match e {
-                Emitter::Point(p) => {
-                    let v = p.position - hit.point;
-                    let r2 = v.length_squared();
-                    if !(r2 > 0.0) {
-                        continue;
-                    }
-                    let r = r2.sqrt();
-                    (v / r, r, p.intensity / r2)
-                }
-                Emitter::Directional(d) => (d.direction, f64::INFINITY, d.irradiance),
-                _ => continue,
+            let Some(light) = DeltaLight::seen_from(e, hit.point, n) else {
+                continue;
             };
-            let cos = n.dot(l);
-            if cos <= 0.0 || !self.visible(hit, l, distance) {
+            if light.cos <= 0.0 || !self.visible(hit, light.direction, light.distance) {
                 continue;
             }
-            let e_light = scale * cos;
-            out.irradiance += e_light;
-            if let Some(h) = highlight {
-                let half = (l + wo).normalize_or_zero();
-                out.highlight += h.brdf(n.dot(half)) * e_light;
-            }
+            out.add(&light, n, wo, highlight);
         }
         if areas && !self.area_emitters.is_empty() {
             let e = self.estimate(hit, n, self.area_emitters)?;

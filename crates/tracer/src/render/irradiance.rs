@@ -19,7 +19,7 @@ use crate::material::Surface;
 /// that see an emitter or nothing have E = 0 and standard error 0.
 pub(super) fn pixel(cx: &Context<'_>, ray: &Ray) -> Result<Pixel, TracerError> {
     cx.camera.set(cx.camera.get() + 1);
-    let Some(sh) = cx.scene.intersect(ray, f64::INFINITY) else {
+    let Some(sh) = cx.scene.nearest_hit(ray, f64::INFINITY) else {
         return Ok(Pixel::background(cx.scene.escaped(ray.direction)));
     };
     let hit = sh.hit;
@@ -35,7 +35,7 @@ pub(super) fn pixel(cx: &Context<'_>, ray: &Ray) -> Result<Pixel, TracerError> {
                 0.0
             })));
         }
-        Surface::Diffuse(texture) => texture.at(hit.uv),
+        Surface::Diffuse(texture) => texture.at_lazy(|| sh.surface_parameters(ray)),
         Surface::Mirror(_) | Surface::Dielectric { .. } => Rgb::WHITE,
     };
     let n = hit.facing_normal(ray.direction);

@@ -10,6 +10,7 @@
 mod context;
 mod irradiance;
 mod raycast;
+mod wavefront;
 mod whitted;
 
 pub use context::RayCounts;
@@ -25,6 +26,7 @@ use lambert_estimator::point::stream_seed;
 use lambert_estimator::point::PointConfig;
 use lambert_estimator::strategy::Strategy;
 use lambert_light::emitter::Emitter;
+use lambert_sampling::isa::Isa;
 use rayon::prelude::*;
 
 use crate::color::Rgb;
@@ -199,11 +201,18 @@ pub fn render(
         .filter(|e| !e.is_delta())
         .cloned()
         .collect();
+    let by_generation = config.mode == Mode::Whitted && wavefront::applies(scene);
+    let isa = Isa::selected();
     let results: Vec<Result<(Vec<Pixel>, RayCounts), TracerError>> = tiles
         .par_iter()
-        .map(|&(x0, y0)| {
-            let mut cx = Context::new(scene, config, &area_emitters);
+        .map_init(wavefront::Scratch::default, |scratch, &(x0, y0)| {
             let (x1, y1) = ((x0 + t).min(w), (y0 + t).min(h));
+            if by_generation {
+                let tile = wavefront::tile(scene, camera, config, isa, (x0, x1), (y0, y1), scratch);
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+                return Ok(tile);
+            }
+            let mut cx = Context::new(scene, config, &area_emitters);
             let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
             for y in y0..y1 {
                 for x in x0..x1 {

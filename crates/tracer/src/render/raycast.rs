@@ -16,7 +16,7 @@ use crate::material::Surface;
 /// reflected or refracted ray. Emitters show their radiance.
 pub(super) fn pixel(cx: &Context<'_>, ray: &Ray) -> Result<Pixel, TracerError> {
     cx.camera.set(cx.camera.get() + 1);
-    let Some(sh) = cx.scene.intersect(ray, f64::INFINITY) else {
+    let Some(sh) = cx.scene.nearest_hit(ray, f64::INFINITY) else {
         return Ok(Pixel::background(cx.scene.escaped(ray.direction)));
     };
     let hit = sh.hit;
@@ -29,7 +29,7 @@ pub(super) fn pixel(cx: &Context<'_>, ray: &Ray) -> Result<Pixel, TracerError> {
             let seen = if front || two_sided { radiance } else { 0.0 };
             return Ok(Pixel::background(Rgb::grey(seen)));
         }
-        Surface::Diffuse(texture) => texture.at(hit.uv),
+        Surface::Diffuse(texture) => texture.at_lazy(|| sh.surface_parameters(ray)),
         Surface::Mirror(reflectance) => reflectance,
         Surface::Dielectric { .. } => Rgb::WHITE,
     };

@@ -37,7 +37,7 @@ fn trace(
     depth: u32,
     first: &mut Option<(f64, f64)>,
 ) -> Result<Rgb, TracerError> {
-    let Some(sh) = cx.scene.intersect(ray, f64::INFINITY) else {
+    let Some(sh) = cx.scene.nearest_hit(ray, f64::INFINITY) else {
         return Ok(cx.scene.escaped(ray.direction));
     };
     let hit = sh.hit;
@@ -61,7 +61,9 @@ fn trace(
             if depth == 0 {
                 *first = Some((direct.irradiance, direct.std_error));
             }
-            Ok(texture.at(hit.uv) * (direct.irradiance / std::f64::consts::PI) + direct.highlight)
+            Ok(texture.at_lazy(|| sh.surface_parameters(ray))
+                * (direct.irradiance / std::f64::consts::PI)
+                + direct.highlight)
         }
         Surface::Mirror(reflectance) => {
             let mut c = match highlight {
