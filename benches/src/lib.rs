@@ -2,6 +2,8 @@
 //! generator in each precision, drawn inside the timed loop so every figure
 //! includes the RNG (as pbrt-v4's and Mitsuba 3's reference figures do).
 
+pub mod arvo;
+
 use criterion::Criterion;
 use glam::{DVec2, Vec2};
 use rand_pcg::{Pcg32, Pcg64Mcg};

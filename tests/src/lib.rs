@@ -8,6 +8,8 @@ use lambert_validate::catalog::DirectionWarpSpec;
 
 pub use lambert_validate::warp_suite::*;
 
+pub mod projected;
+
 /// Samples on and near the edges of the unit square: 0, tiny, interior,
 /// 1 − ε (for f64 and for f32) and exactly 1.
 pub fn edge_values() -> Vec<f64> {

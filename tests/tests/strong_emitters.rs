@@ -85,7 +85,7 @@ fn a_scene_at_two_to_the_100_gives_the_scaled_estimate_to_the_bit() {
             }
         }
     }
-    assert_eq!(checked, builtin_scenes().len() * 6 * 3);
+    assert_eq!(checked, builtin_scenes().len() * Strategy::ALL.len() * 3);
 }
 
 fn up() -> Receiver {

@@ -241,6 +241,8 @@ fn every_strategy_and_sequence_agrees_with_the_closed_form() {
         "area",
         "mis",
         "mis-balance",
+        "projected",
+        "control-variate",
     ];
     let sequences = ["independent", "stratified", "sobol"];
     let alpha = lambert_validate::sidak_level(0.01, strategies.len() * sequences.len());

@@ -120,6 +120,43 @@ fn json_summary_and_files() {
     }
 }
 
+/// The irradiance mode accepts the projected and control-variate
+/// strategies (the Cornell box's light is a polygon, partly hidden by its
+/// blocks from much of the floor: projected sampling with visibility, and
+/// the closed form minus the hidden part).
+#[test]
+fn irradiance_mode_takes_projected_and_control_variate() {
+    let dir = TempDir::new("strategies");
+    for strategy in ["projected", "control-variate"] {
+        let out = dir.file(&format!("{strategy}.exr"));
+        let o = lambert(&[
+            "render",
+            "cornell",
+            "--mode",
+            "irradiance",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "--spp",
+            "32",
+            "--strategy",
+            strategy,
+            "--out",
+            path(&out),
+            "--json",
+        ]);
+        assert!(
+            o.status.success(),
+            "{strategy}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let v: Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
+        let e = v["mean_relative_std_error"].as_f64().unwrap();
+        assert!(e.is_finite() && e >= 0.0, "{strategy}: {v}");
+    }
+}
+
 /// Runs a render expected to fail: exit code 2, the message on stderr
 /// containing `expected`, nothing on stdout, and no file written.
 fn fails(dir: &TempDir, args: &[&str], expected: &str) {

@@ -275,6 +275,11 @@ pub struct SampleSummary {
     /// The standard error from the samples or replicates (before the
     /// rounding floor).
     pub std_error: f64,
+    /// A bound on the error every sample carries alike, which no number of
+    /// samples averages away: the rounding error of a projected sampler's
+    /// Ω⊥ ([`PreparedEmitter::systematic_error`](crate::strategy::PreparedEmitter::systematic_error)).
+    /// Added to the rounding floor.
+    pub systematic: f64,
     /// Where it comes from.
     pub source: ErrorSource,
 }
@@ -348,7 +353,8 @@ impl Rare {
 pub fn honest_interval(summary: &SampleSummary, parts: &[PartTally], level: f64) -> HonestInterval {
     debug_assert!(level > 0.0 && level < 1.0, "level {level}");
     let n = summary.n;
-    let floor = mean_rounding_floor(summary.sampled_mean.abs() + summary.delta.abs(), n);
+    let floor = mean_rounding_floor(summary.sampled_mean.abs() + summary.delta.abs(), n)
+        + summary.systematic;
     let std_error = summary.std_error.max(floor);
     let alpha = 1.0 - level;
     let mut above = Rare::default();
@@ -532,6 +538,7 @@ mod tests {
             delta: 0.0,
             std_error,
             source: ErrorSource::Samples,
+            systematic: 0.0,
         }
     }
 

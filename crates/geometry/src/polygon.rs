@@ -123,13 +123,21 @@ macro_rules! polygon_impl {
                     ));
                 }
                 let normal = newell / twice_area;
+                // The tolerance is relative to the extent, plus the rounding
+                // of the computed plane itself: Newell's normal of vertices
+                // whose coordinates are c (here ≤ 1) is off by ~ε c/extent in
+                // direction, which moves a vertex's distance to the plane by
+                // ~ε c. Without that term a small triangle far from the
+                // origin (extent 1e-3 of its coordinates, in f32) would be
+                // "not planar".
+                let tolerance = PLANARITY * extent + 8.0 * Real::EPSILON;
                 for (i, v) in scaled.iter().enumerate() {
                     let off = normal.dot(*v - scaled[0]).abs();
-                    if off > PLANARITY * extent {
+                    if off > tolerance {
                         return Err(shape(format!(
                             "is not planar: vertex {i} lies {:e} from the plane of the others (tolerance {:e})",
                             off * k,
-                            PLANARITY * extent * k
+                            tolerance * k
                         )));
                     }
                 }

@@ -25,10 +25,12 @@
 
 mod area;
 mod area_light;
+mod carlson;
 mod cone;
 mod direction_sample;
 mod discrete;
 mod disk;
+mod disk_light;
 pub mod error;
 mod hemisphere;
 mod horizon_clip;
@@ -36,6 +38,10 @@ pub mod isa;
 mod light_sample;
 mod light_sampler;
 mod polygon_light;
+mod projected_cap;
+mod projected_polygon;
+mod projected_sphere;
+mod segment;
 pub mod sequence;
 mod soa;
 mod sphere;
@@ -65,6 +71,7 @@ macro_rules! public_api {
             concentric_polar, invert_concentric_disk, invert_uniform_disk, pdf_concentric_disk,
             pdf_uniform_disk, sample_concentric_disk, sample_uniform_disk,
         };
+        pub use crate::disk_light::$p::{DiskLightSampler, DiskSolidAngle};
         pub use crate::hemisphere::$p::{
             invert_cosine_hemisphere, invert_uniform_hemisphere, pdf_cosine_hemisphere,
             pdf_uniform_hemisphere, sample_cosine_hemisphere, sample_cosine_hemisphere_batch,
@@ -74,6 +81,9 @@ macro_rules! public_api {
         pub use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
         pub use crate::light_sampler::$p::{seen_from, LightSampler};
         pub use crate::polygon_light::$p::{PolygonLightSampler, PolygonSolidAngle};
+        pub use crate::projected_cap::$p::ProjectedCap;
+        pub use crate::projected_polygon::$p::{ProjectedPolygon, ProjectedPolygonSampler};
+        pub use crate::projected_sphere::$p::{ProjectedSphere, ProjectedSphereSampler};
         pub use crate::sphere::$p::{
             invert_uniform_sphere, pdf_uniform_sphere, sample_uniform_sphere,
             sample_uniform_sphere_batch, sample_uniform_sphere_soa,

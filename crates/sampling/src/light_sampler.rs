@@ -88,6 +88,20 @@ macro_rules! light_sampler_impl {
             })
         }
 
+        /// The unit shading normal of a sampler that weights by cos θ:
+        /// `normal` itself when it is already unit to 4ε (so that a caller's
+        /// n·ω and the sampler's are the same bits, which the zero-variance
+        /// estimators need), else `normal` normalised; errors (field
+        /// `normal`) for a zero or non-finite vector.
+        #[inline]
+        pub(crate) fn shading_normal(normal: V3) -> Result<V3, crate::SamplingError> {
+            if normal.is_finite() && (normal.length_squared() - 1.0).abs() <= 4.0 * Real::EPSILON {
+                Ok(normal)
+            } else {
+                Ok(lambert_geometry::$p::unit_vector("normal", normal)?)
+            }
+        }
+
         /// Whether every one of `points` lies on or below the horizon of
         /// (`reference`, `normal`): n·(pᵢ − reference) ≤ 0.
         #[inline]

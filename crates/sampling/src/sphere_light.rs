@@ -165,8 +165,36 @@ macro_rules! sphere_light_impl {
             pub fn sample(&self, u: V2) -> LightSample {
                 let local = self.cone.sample(u);
                 let direction = self.frame.from_local(local);
-                // sin²θ = (1 − cos θ)(1 + cos θ), from the cone's own h·u₀.
-                let one_minus_cos = u.x * self.cone.one_minus_cos_theta_max();
+                // 1 − cos θ from the cone's own h·u₀.
+                let (sin_c, cos_c, t) = self.near_hit(u.x * self.cone.one_minus_cos_theta_max());
+                // In the frame pointing back at the reference (−z), the point
+                // lies at polar angle α_c, azimuth opposite to the direction's.
+                let horizontal = V3::new(local.x, local.y, 0.0);
+                let h_len = horizontal.length();
+                let lateral = if h_len > 0.0 {
+                    horizontal / h_len
+                } else {
+                    V3::new(1.0, 0.0, 0.0)
+                };
+                let normal_local = lateral * sin_c.max(0.0) - V3::new(0.0, 0.0, cos_c);
+                let normal = self.frame.from_local(normal_local).normalize();
+                LightSample {
+                    direction,
+                    pdf: 1.0 / self.cone.solid_angle(),
+                    point: self.center + normal * self.radius,
+                    distance: t,
+                }
+            }
+
+            /// Where a direction at angle θ from the axis (given as
+            /// 1 − cos θ ≤ 1 − cos θmax) meets the near side of the sphere:
+            /// (sin α_c, cos α_c, t), with α_c the angle at the center
+            /// between the point and the direction back to the reference,
+            /// and t the distance. The point is center + r·(lateral·sin α_c
+            /// − axis·cos α_c), lateral the unit direction of the sample's
+            /// offset from the axis (the type's docs give the formulas).
+            #[inline]
+            pub(crate) fn near_hit(&self, one_minus_cos: Real) -> (Real, Real, Real) {
                 let cos_theta = 1.0 - one_minus_cos;
                 let sin2_theta = one_minus_cos * (2.0 - one_minus_cos);
                 let below_rim = (self.sin2_theta_max - sin2_theta).max(0.0);
@@ -181,23 +209,19 @@ macro_rules! sphere_light_impl {
                 let cos_g = root / self.sin_theta_max;
                 let sin_alpha = sin_g * cos_theta - cos_g * sin_theta;
                 let cos_alpha = cos_g * cos_theta + sin_g * sin_theta;
-                // In the frame pointing back at the reference (−z), the point
-                // lies at polar angle α, azimuth opposite to the direction's.
-                let horizontal = V3::new(local.x, local.y, 0.0);
-                let h_len = horizontal.length();
-                let lateral = if h_len > 0.0 {
-                    horizontal / h_len
-                } else {
-                    V3::new(1.0, 0.0, 0.0)
-                };
-                let normal_local = lateral * sin_alpha.max(0.0) - V3::new(0.0, 0.0, cos_alpha);
-                let normal = self.frame.from_local(normal_local).normalize();
-                LightSample {
-                    direction,
-                    pdf: 1.0 / self.cone.solid_angle(),
-                    point: self.center + normal * r,
-                    distance: t,
-                }
+                (sin_alpha, cos_alpha, t)
+            }
+
+            /// The sphere's radius.
+            #[inline]
+            pub(crate) fn radius(&self) -> Real {
+                self.radius
+            }
+
+            /// The distance from the reference point to the center.
+            #[inline]
+            pub(crate) fn distance(&self) -> Real {
+                self.distance
             }
 
             /// The density per steradian of direction `w` (unit): 1/Ω inside

@@ -151,6 +151,55 @@ macro_rules! hashes {
             v3(w, s.point);
             w.push(s.pdf_area.bits());
         });
+        // Projected-solid-angle samplers: a cap above, straddling with its
+        // axis above and with it below the horizon (the three regions).
+        for (name, axis) in [
+            ("projected_cap(above)", V3::new(0.6, 0.0, 0.8)),
+            ("projected_cap(straddling above)", V3::new(0.8, 0.36, 0.1)),
+            ("projected_cap(straddling below)", V3::new(0.9, 0.0, -0.1)),
+        ] {
+            let cap = ProjectedCap::new(axis, 0.1).unwrap();
+            run(name, &mut |u, w| {
+                let d = cap.sample(u);
+                v3(w, d.direction);
+                w.push(d.pdf.bits());
+                v2(w, cap.invert(d.direction));
+            });
+        }
+        let (pr, nr) = (V3::new(0.1, 0.2, 0.3), V3::new(0.2, -0.1, 1.0).normalize());
+        let projected_sphere = ProjectedSphere::new(pr, nr, &sphere).unwrap();
+        run("projected_sphere", &mut |u, w| {
+            let s = projected_sphere.sample(u);
+            v3(w, s.direction);
+            v3(w, s.point);
+            w.extend([s.pdf.bits(), s.distance.bits()]);
+            v2(w, projected_sphere.invert(s.direction));
+        });
+        for (name, dx) in [("central", 0.0), ("non-central", 1.0)] {
+            let square = ConvexPolygon::new(vec![
+                V3::new(dx - 0.5, -0.5, 1.0),
+                V3::new(dx + 0.5, -0.5, 1.0),
+                V3::new(dx + 0.5, 0.5, 1.0),
+                V3::new(dx - 0.5, 0.5, 1.0),
+            ])
+            .unwrap();
+            let sampler = ProjectedPolygon::new(V3::ZERO, V3::Z, &square).unwrap();
+            run(&format!("projected_polygon({name})"), &mut |u, w| {
+                let s = sampler.sample(u);
+                v3(w, s.direction);
+                v3(w, s.point);
+                w.extend([s.pdf.bits(), s.distance.bits()]);
+                v2(w, sampler.invert(s.direction));
+            });
+        }
+        let disk_solid_angle = DiskSolidAngle::new(V3::ZERO, &disk).unwrap();
+        run("disk_solid_angle", &mut |u, w| {
+            let s = disk_solid_angle.sample(u);
+            v3(w, s.direction);
+            v3(w, s.point);
+            w.extend([s.pdf.bits(), s.distance.bits()]);
+            v2(w, disk_solid_angle.invert(s.direction));
+        });
         let hexagon: Vec<V3> = (0..6)
             .map(|k| {
                 let t = k as f64 * std::f64::consts::PI / 3.0;
@@ -170,6 +219,15 @@ macro_rules! hashes {
                 Box::new(PolygonLightSampler::new(polygon.clone()).unwrap()),
             ),
             ("sphere_area", Box::new(SphereAreaSampler::new(sphere))),
+            (
+                "projected_sphere_light",
+                Box::new(ProjectedSphereSampler::new(sphere)),
+            ),
+            (
+                "projected_polygon_light",
+                Box::new(ProjectedPolygonSampler::new(polygon.clone())),
+            ),
+            ("disk_light", Box::new(DiskLightSampler::new(disk))),
             ("disk_area_light", Box::new(DiskAreaSampler::new(disk))),
             (
                 "triangle_area_light",
@@ -201,9 +259,19 @@ const EXPECTED: &[(&str, u64)] = &[
     ("f32/cosine_hemisphere", 0xefc9f48ee2f30b30),
     ("f32/disk_area", 0xdcbcdb595e7bd594),
     ("f32/disk_area_light", 0xbb7d300b18b2fc7b),
+    ("f32/disk_light", 0x970fac7a65b8bdc8),
+    ("f32/disk_solid_angle", 0x2e1aa6f557314583),
     ("f32/parallelogram_area", 0xd1417b47dc5947d0),
     ("f32/polygon_area_light", 0xd3be571cbd23d44c),
     ("f32/polygon_light", 0xe9d9d72d4d5871f1),
+    ("f32/projected_cap(above)", 0x30f6333e06384bd5),
+    ("f32/projected_cap(straddling above)", 0x47758cedf2e120be),
+    ("f32/projected_cap(straddling below)", 0xf382eb24ce3aa053),
+    ("f32/projected_polygon(central)", 0x08b1ca3e8fb4f88d),
+    ("f32/projected_polygon(non-central)", 0xedb2059ee418c612),
+    ("f32/projected_polygon_light", 0x70dafc0830881671),
+    ("f32/projected_sphere", 0x9d0fc51e35769814),
+    ("f32/projected_sphere_light", 0xd2f4921f5a831c34),
     ("f32/sin_cos_2pi", 0x5c30d5d8051ab590),
     ("f32/sphere_area", 0x6b7293e577c36fca),
     ("f32/sphere_light", 0x1484d807b6224230),
@@ -223,9 +291,19 @@ const EXPECTED: &[(&str, u64)] = &[
     ("f64/cosine_hemisphere", 0xe5ebee5b7561ca18),
     ("f64/disk_area", 0x94289260de1cb6e3),
     ("f64/disk_area_light", 0x74881226e3feea1f),
+    ("f64/disk_light", 0x11ced86573913df9),
+    ("f64/disk_solid_angle", 0xd95e2f3c60193ff3),
     ("f64/parallelogram_area", 0x12c9cfd2eec84658),
     ("f64/polygon_area_light", 0x060b0c4dce5847eb),
     ("f64/polygon_light", 0x3f1b494a85269a88),
+    ("f64/projected_cap(above)", 0x48965b410e9bcdbe),
+    ("f64/projected_cap(straddling above)", 0x811e3c6b6d322cd5),
+    ("f64/projected_cap(straddling below)", 0x16be81276a946fcb),
+    ("f64/projected_polygon(central)", 0xbf024984fc142344),
+    ("f64/projected_polygon(non-central)", 0x091f5b50b9683c11),
+    ("f64/projected_polygon_light", 0x3b0bd8065f76e86e),
+    ("f64/projected_sphere", 0x95c8addb4b280752),
+    ("f64/projected_sphere_light", 0x1cea4f77c92816ae),
     ("f64/sin_cos_2pi", 0x170b059a0fe54d38),
     ("f64/sphere_area", 0x89c5846079f59c9a),
     ("f64/sphere_light", 0x877dc3da59aa59a1),

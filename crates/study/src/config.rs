@@ -6,7 +6,7 @@
 //!
 //! ```toml
 //! name = "my-study"                       # output folder name
-//! strategies = ["light", "mis"]           # Strategy names (default: the six of the built-in study)
+//! strategies = ["light", "mis"]           # Strategy names (default: the eight of the built-in study)
 //! sequences = ["independent", "sobol"]    # default: all three
 //! n_min_log2 = 5                          # N = 2^5 … 2^12
 //! n_max_log2 = 12
@@ -94,7 +94,7 @@ impl fmt::Display for StudyError {
 impl std::error::Error for StudyError {}
 
 /// The strategies of the built-in study.
-pub const BUILTIN_STRATEGIES: [Strategy; 6] = Strategy::ALL;
+pub const BUILTIN_STRATEGIES: [Strategy; 8] = Strategy::ALL;
 
 /// The built-in study's seed.
 pub const BUILTIN_SEED: u64 = 20261122;
@@ -112,7 +112,7 @@ fn all_builtin_scenes() -> Vec<StudyScene> {
 
 impl StudyConfig {
     /// The default study (`lambert study`, `cargo run --release`): every
-    /// built-in scene × the six strategies × the three sequences × N =
+    /// built-in scene × the eight strategies × the three sequences × N =
     /// 2^5 … 2^18 × 8 replicates. N starts at 2^5 because the randomized-QMC
     /// estimates need 2 samples in each of their 16 randomizations; it stops
     /// at 2^18 so that the whole study runs in under a minute on two cores
@@ -316,7 +316,7 @@ mod tests {
     fn parses_inline_and_builtin_scenes() {
         let text = r#"
             name = "t"
-            strategies = ["light", "mis"]
+            strategies = ["light", "mis", "projected", "control-variate"]
             sequences = ["sobol"]
             n_min_log2 = 6
             n_max_log2 = 8
@@ -332,7 +332,15 @@ mod tests {
         assert_eq!(c.scenes.len(), 2);
         assert_eq!(c.scenes[0].name, "sky");
         assert_eq!(c.scenes[0].reference, Some(2.0 * std::f64::consts::PI));
-        assert_eq!(c.strategies.len(), 2);
+        assert_eq!(
+            c.strategies,
+            vec![
+                Strategy::Light,
+                Strategy::Mis(lambert_estimator::strategy::Heuristic::Power),
+                Strategy::Projected,
+                Strategy::ControlVariate
+            ]
+        );
         assert_eq!(c.sequences, vec![SequenceKind::Sobol]);
         assert_eq!(
             (c.n_min_log2, c.n_max_log2, c.replicates, c.seed),

@@ -150,8 +150,8 @@ mod tests {
     fn plan_is_canonical_and_shards_partition_it() {
         let c = StudyConfig::quick();
         let rows = plan(&c);
-        // scenes × 6 strategies × 3 sequences × 10 N (2^5..2^14).
-        assert_eq!(rows.len(), c.scenes.len() * 6 * 3 * 10);
+        // scenes × 8 strategies × 3 sequences × 10 N (2^5..2^14).
+        assert_eq!(rows.len(), c.scenes.len() * 8 * 3 * 10);
         assert!(rows.iter().enumerate().all(|(i, r)| r.index == i));
         let shards: Vec<Shard> = (0..4).map(|k| Shard { k, count: 4 }).collect();
         for r in &rows {

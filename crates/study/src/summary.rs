@@ -41,8 +41,10 @@ pub struct GroupSummary {
     /// Largest N.
     pub n_max: u64,
     /// Predicted seconds (one thread) to reach [`TARGET_REL_RMSE`]: N* from
-    /// the fit, times ns/sample; 0 for an exact estimator; `None` without a
-    /// reference, with a zero reference, or without a decreasing fit.
+    /// the fit, times ns/sample; 0 for an exact estimator; the time of the
+    /// smallest N when every N is already within the target (exact up to
+    /// rounding: no decreasing fit); `None` without a reference, with a
+    /// zero reference, or without a decreasing fit otherwise.
     pub time_to_target: Option<f64>,
     /// (log₂ N, replicates) of the rows where some replicates' intervals
     /// were not the CLT ones (few or no hits, few misses, a heavy tail).
@@ -157,8 +159,18 @@ pub fn group_summaries(rows: &[ResultRow]) -> Vec<GroupSummary> {
                     .collect();
                 fit_loglog(&pts)
             });
+            // Every N already within the target (an estimator exact up to
+            // rounding, whose error does not fall with N and so has no
+            // slope): the time of the smallest N bounds it.
+            let within = |t: f64| {
+                g.iter()
+                    .all(|r| r.stats.rmse.is_some_and(|e| e <= TARGET_REL_RMSE * t.abs()))
+            };
             let time_to_target = match (reference, fit) {
                 (Some(t), Some(LogLogFit::Exact)) if t != 0.0 => Some(0.0),
+                (Some(t), Some(_)) if t != 0.0 && within(t) => {
+                    Some(g[0].n() as f64 * g[0].stats.ns_per_sample * 1e-9)
+                }
                 (Some(t), Some(f)) if t != 0.0 => f
                     .n_for(TARGET_REL_RMSE * t.abs())
                     .map(|n| n.max(1.0) * last.stats.ns_per_sample * 1e-9),

@@ -9,9 +9,9 @@
 //! slopes over the smooth scenes.
 
 use lambert_estimator::clt::{clt_applies, normal_score};
-use lambert_estimator::estimation::{SequenceKind, RQMC_REPLICATES};
+use lambert_estimator::estimation::{prepare, SequenceKind, RQMC_REPLICATES};
 use lambert_estimator::interval::IntervalKind;
-use lambert_estimator::strategy::Strategy;
+use lambert_estimator::strategy::{PreparedEmitter, Strategy};
 use lambert_estimator::ConfidenceInterval;
 use lambert_study::{
     aggregate, fit_loglog, plan, run_replicates, LogLogFit, StudyConfig, StudyScene,
@@ -241,6 +241,11 @@ fn run_intervals() -> IntervalStudy {
                     log2_n,
                 }
             };
+            let systematic: f64 = prepare(&scene.scene, strategy)
+                .0
+                .iter()
+                .map(PreparedEmitter::systematic_error)
+                .sum();
             let pilot_key = key(SequenceKind::Independent, config.n_min_log2);
             let pilot = run_replicates(&config, &pilot_key).unwrap();
             let v = pilot.iter().map(|r| r.sample_variance).sum::<f64>() / pilot.len() as f64;
@@ -267,10 +272,14 @@ fn run_intervals() -> IntervalStudy {
                     .map(|r| (r.mean - truth, 0.5 * (r.ci99.1 - r.ci99.0)))
                     .collect();
                 // Exact estimators (cosine sampling under a sky, a delta
-                // light) report the rounding floor (5u + 4(N + 2)u²)·(m + |δ|)
-                // ≤ 6e-16·m at N ≤ 2^13, not a sampling σ: any σ ≤ 1e-15·|m|
+                // light, projected sampling of a uniform light) report the
+                // rounding floor (5u + 4(N + 2)u²)·(m + |δ|) ≤ 6e-16·m at
+                // N ≤ 2^13, plus the projected samplers' bound on their Ω⊥
+                // error, not a sampling σ: any σ ≤ 1e-15·|m| + that bound
                 // is that floor, and such an estimator has nothing to cover.
-                let sampled = reps.iter().any(|r| r.std_error > 1e-15 * r.mean.abs());
+                let sampled = reps
+                    .iter()
+                    .any(|r| r.std_error > 1e-15 * r.mean.abs() + systematic);
                 if sampled {
                     study.tested.push(Intervals {
                         scene: scene.name.clone(),
@@ -451,6 +460,10 @@ fn the_spread_of_z_is_honest_for_every_estimator_and_one_miscalibrated_estimator
 /// narrowed to 95 % ones (half-width × z₀.₉₇₅/z₀.₉₉₅, or the t(15)
 /// quantiles' ratio) must fall outside the band of every strategy ×
 /// sequence; its power P(Bin(K, 0.05) outside the band) is stated.
+/// A strategy with too few sampled estimators for that power in some
+/// sequence (`projected`, exact on every light but disks, where it samples
+/// by solid angle like `light`) is judged with its sequences pooled: each
+/// interval misses with probability 0.01 whatever its sequence.
 #[test]
 fn coverage_per_strategy_and_sequence_is_within_its_binomial_band() {
     let all = &intervals().tested;
@@ -469,6 +482,36 @@ fn coverage_per_strategy_and_sequence_is_within_its_binomial_band() {
         cell.1 += i.covered(q95 / quantile(i.sequence));
         cell.2 += i.errors.len();
     }
+    // Judged at the Šidák level over the unpooled cells: pooling only
+    // leaves fewer cells, a wider per-cell level and a narrower band.
+    let unpooled_alpha = sidak_level(FAMILY_ALPHA, cells.len());
+    let weak: Vec<String> = cells
+        .iter()
+        .filter(|(_, &(_, _, total))| {
+            let (lo, hi) = binomial_band(total as u64, 0.01, unpooled_alpha);
+            let power: f64 = binomial_pmf(total as u64, 0.05)
+                .iter()
+                .enumerate()
+                .filter(|(x, _)| !(lo..=hi).contains(&(*x as u64)))
+                .map(|(_, p)| p)
+                .sum();
+            power < CONTROL_POWER
+        })
+        .map(|((strategy, _), _)| strategy.clone())
+        .collect();
+    let cells: BTreeMap<(String, String), (usize, usize, usize)> =
+        cells
+            .into_iter()
+            .fold(BTreeMap::new(), |mut pooled, ((strategy, sequence), c)| {
+                let sequence = if weak.contains(&strategy) {
+                    "pooled".to_string()
+                } else {
+                    sequence
+                };
+                let cell = pooled.entry((strategy, sequence)).or_default();
+                *cell = (cell.0 + c.0, cell.1 + c.1, cell.2 + c.2);
+                pooled
+            });
     let alpha = sidak_level(FAMILY_ALPHA, cells.len());
     let mut failures = Vec::new();
     for ((strategy, sequence), (covered, covered95, total)) in &cells {

@@ -31,7 +31,8 @@ use super::finite;
 pub struct EstimateOptions {
     /// The scene file (TOML).
     pub scene: PathBuf,
-    /// auto | uniform-hemisphere | cosine-hemisphere | light | area | mis | mis-balance.
+    /// auto | uniform-hemisphere | cosine-hemisphere | light | area | mis | mis-balance |
+    /// projected | control-variate.
     #[arg(long, default_value = "auto")]
     pub strategy: String,
     /// independent | stratified | sobol.

@@ -42,7 +42,7 @@ pub struct RenderOptions {
     #[arg(long, default_value_t = 64)]
     pub spp: u64,
     /// auto | uniform-hemisphere | cosine-hemisphere | light | area | mis |
-    /// mis-balance.
+    /// mis-balance | projected | control-variate.
     #[arg(long, default_value = "auto")]
     pub strategy: String,
     /// independent | stratified | sobol (the last two need --spp ≥ 32).

@@ -112,15 +112,15 @@ impl PreparedEmitter {
                 &block,
                 out,
             ),
-            (EmitterLight::Disk(a, r), Emitter::Disk(e)) => technique_batch(
+            (EmitterLight::Disk(d), Emitter::Disk(e)) => technique_batch(
                 self,
                 receiver,
                 #[inline(always)]
                 |w| e.radiance_toward(p, w),
                 #[inline(always)]
-                |u| sample_disk(a, r, u),
+                |u| sample_disk(d, u),
                 #[inline(always)]
-                |w| a.pdf(r.point, r.normal, w),
+                |w| d.pdf(w),
                 &block,
                 out,
             ),
@@ -234,6 +234,13 @@ fn technique_batch(
         },
     );
     match emitter.technique {
+        // Projected sampling and the control variate have no block kernel
+        // yet: the one-sample path, sample by sample (the same bits).
+        Technique::Projected | Technique::ControlVariate => single(
+            out,
+            #[inline(always)]
+            |i| emitter.evaluate_u(receiver, block.u(i), DVec2::ZERO),
+        ),
         Technique::UniformHemisphere => single(
             out,
             #[inline(always)]

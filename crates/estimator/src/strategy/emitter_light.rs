@@ -6,8 +6,8 @@ use lambert_geometry::f64::Frame;
 use lambert_light::emitter::Emitter;
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
-    pdf_uniform_sphere, sample_uniform_sphere, DiskAreaSampler, LightSampler, PolygonLightSampler,
-    PolygonSolidAngle, SphereLightSampler, SphereSolidAngle, UniformCone,
+    pdf_uniform_sphere, sample_uniform_sphere, DiskLightSampler, DiskSolidAngle,
+    PolygonLightSampler, PolygonSolidAngle, SphereLightSampler, SphereSolidAngle, UniformCone,
 };
 
 /// A direction toward a light with its density per steradian.
@@ -24,18 +24,20 @@ pub struct LightDirection {
 /// ([`SphereLightSampler`]; Shirley et al. 1996) and sky caps, the uniform
 /// sphere for a sky, the spherical rectangle (Ureña et al. 2013) or a fan of
 /// spherical triangles chosen by solid angle (Arvo 1995) for polygons
-/// ([`PolygonLightSampler`]), and area sampling converted to solid angle for
-/// disks ([`DiskAreaSampler`]; no solid-angle sampler of a disk yet).
+/// ([`PolygonLightSampler`]), and the spherical ellipse a disk subtends
+/// ([`DiskLightSampler`]; Guillén et al. 2017, "Area-preserving
+/// parameterizations for spherical ellipses"), whose density 1/Ω replaces
+/// area sampling's d²/(A|cos θ_l|): its values LΩ cos θ are bounded, where
+/// area sampling's grow without bound as the receiver nears the disk.
 ///
 /// **What is sampled.** Polygons are clipped to the receiver's hemisphere
 /// first, so every sample sees the light and the density is 1/Ω of the
 /// visible part. Spheres' and caps' cones and disks are sampled whole:
 /// samples below the horizon score 0 (the sampling crate's `LightSampler`
-/// docs say why there is no closed-form sampler of the visible part). For a
-/// disk, sampling by area also makes the estimate heavy-tailed when the
-/// receiver is close to it (see [`EmitterArea`](super::EmitterArea)); `auto`
-/// therefore never uses it alone, but inside MIS (power heuristic), whose
-/// weights bound every sample's value by 3πL/2.
+/// docs say why there is no closed-form sampler of the visible part of the
+/// uniform cone or the spherical ellipse; the `projected` strategy samples
+/// only the visible part of caps and spheres). For a disk crossing the
+/// horizon `auto` therefore uses MIS (power) with cosine sampling.
 #[derive(Clone, Debug)]
 pub enum EmitterLight {
     /// The whole sphere of directions, uniform.
@@ -46,8 +48,8 @@ pub enum EmitterLight {
     Sphere(SphereSolidAngle),
     /// A polygon's spherical rectangle or fan of spherical triangles.
     Polygon(PolygonSolidAngle),
-    /// A disk, by area sampling at the receiver.
-    Disk(DiskAreaSampler, Receiver),
+    /// A disk's spherical ellipse.
+    Disk(DiskSolidAngle),
     /// Nothing to sample (the emitter is invisible from here, or a delta
     /// light).
     None,
@@ -64,7 +66,12 @@ impl EmitterLight {
                 Ok(sampler) => EmitterLight::Sphere(sampler),
                 Err(_) => EmitterLight::None,
             },
-            Emitter::Disk(d) => EmitterLight::Disk(DiskAreaSampler::new(d.disk), *receiver),
+            Emitter::Disk(d) => match DiskLightSampler::new(d.disk).at(p) {
+                Ok(sampler) => EmitterLight::Disk(sampler),
+                // The receiver in the disk's plane: it sees the disk
+                // edge-on, no solid angle.
+                Err(_) => EmitterLight::None,
+            },
             Emitter::Polygon(poly) => match PolygonLightSampler::new(poly.polygon.clone()) {
                 Ok(sampler) => match sampler.at(p, receiver.normal) {
                     PolygonSolidAngle::Fan { triangles, .. } if triangles.is_empty() => {
@@ -98,7 +105,7 @@ impl EmitterLight {
             EmitterLight::Sphere(s) => sample_sphere(s, u),
             EmitterLight::Cap(frame, cone) => sample_cap(frame, cone, u),
             EmitterLight::Polygon(p) => sample_polygon(p, u),
-            EmitterLight::Disk(a, r) => sample_disk(a, r, u),
+            EmitterLight::Disk(d) => sample_disk(d, u),
             EmitterLight::None => None,
         }
     }
@@ -112,7 +119,7 @@ impl EmitterLight {
             EmitterLight::Sphere(s) => s.pdf(w),
             EmitterLight::Cap(frame, cone) => cone.pdf(frame.to_local(w)),
             EmitterLight::Polygon(p) => p.pdf(w),
-            EmitterLight::Disk(a, r) => a.pdf(r.point, r.normal, w),
+            EmitterLight::Disk(d) => d.pdf(w),
             EmitterLight::None => 0.0,
         }
     }
@@ -160,9 +167,9 @@ pub(super) fn sample_polygon(p: &PolygonSolidAngle, u: DVec2) -> Option<LightDir
     checked(l.direction, l.pdf)
 }
 
-/// [`EmitterLight::sample`] of a disk: by area, seen from the receiver.
+/// [`EmitterLight::sample`] of a disk: its spherical ellipse.
 #[inline(always)]
-pub(super) fn sample_disk(a: &DiskAreaSampler, r: &Receiver, u: DVec2) -> Option<LightDirection> {
-    let l = a.sample(r.point, r.normal, u)?;
+pub(super) fn sample_disk(d: &DiskSolidAngle, u: DVec2) -> Option<LightDirection> {
+    let l = d.sample(u);
     checked(l.direction, l.pdf)
 }

@@ -6,7 +6,18 @@
 //! - uniform hemisphere: p = 1/2π, F = 2π L cos θ;
 //! - cosine hemisphere: p = cos θ/π, F = π L (zero variance under a
 //!   uniform sky);
-//! - light: the emitter's solid-angle sampler ([`EmitterLight`]);
+//! - light: the emitter's solid-angle sampler ([`EmitterLight`]; disks by
+//!   the solid angle of their spherical ellipse, Guillén et al. 2017);
+//! - projected: the emitter's projected-solid-angle sampler,
+//!   p = cos θ/Ω⊥ on its part above the horizon ([`EmitterProjected`];
+//!   Ureña & Georgiev 2018 for caps and spheres, Peters 2021 for
+//!   polygons): F = L Ω⊥ for every sample of a uniform emitter, zero
+//!   variance where nothing occludes;
+//! - control variate: the emitter's closed-form irradiance E_u minus an
+//!   estimate of what occluders hide, F = E_u − (1 − V(ω)) L cos θ/p with
+//!   ω from the projected sampler (the light sampler for disks): unbiased,
+//!   exact where nothing occludes, noisy only in penumbrae
+//!   ([`ControlVariate`]). Without occluders it is the closed form;
 //! - area: uniform points on the emitter, p_ω = p_A d²/|cos θ_l|
 //!   ([`EmitterArea`]);
 //! - MIS: one cosine and one light sample, weighted by the balance or power
@@ -18,9 +29,8 @@
 //! LΩ or 4πL for the hemisphere and solid-angle techniques, by 3πL/2 (power
 //! heuristic) or 2πL (balance) for MIS, whose weights tame whichever
 //! density is small. Those have finite variance everywhere. **Area
-//! sampling** — the `area` strategy on spheres, disks and polygons, and the
-//! `light` strategy on disks, which samples a disk by area until a
-//! solid-angle sampler of it exists — is different: its value
+//! sampling** — the `area` strategy on spheres, disks and polygons — is
+//! different: its value
 //! L cos θ cos θ_l A/d² reaches L·A/d_min², so its relative variance grows
 //! as A/d_min² and is unbounded as the receiver approaches the emitter (a
 //! receiver close under a disk, or a disk far larger than its height); it
@@ -41,14 +51,18 @@
 //! per-emitter estimates: unbiased, since each term is.
 
 mod batch;
+mod control_variate;
 mod emitter_area;
 mod emitter_light;
+mod emitter_projected;
 mod occluded;
 mod prepared;
 pub mod value_bound;
 
+pub use control_variate::ControlVariate;
 pub use emitter_area::EmitterArea;
 pub use emitter_light::{EmitterLight, LightDirection};
+pub use emitter_projected::EmitterProjected;
 pub use occluded::{delta_irradiance_visible, OccludedEmitter};
 pub use prepared::{PartHits, PreparedEmitter};
 pub use value_bound::{PartBound, PartShape};
@@ -57,6 +71,7 @@ use std::fmt;
 use std::str::FromStr;
 
 use lambert_light::emitter::Emitter;
+use lambert_light::receiver::Receiver;
 
 /// How to combine the two samples of MIS.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -112,17 +127,23 @@ pub enum Strategy {
     Area,
     /// Cosine + light with the given heuristic.
     Mis(Heuristic),
+    /// The emitter's projected-solid-angle sampler (solid angle for disks).
+    Projected,
+    /// The closed form minus an estimate of what occluders hide.
+    ControlVariate,
 }
 
 impl Strategy {
     /// Every concrete strategy (not `Auto`).
-    pub const ALL: [Strategy; 6] = [
+    pub const ALL: [Strategy; 8] = [
         Strategy::UniformHemisphere,
         Strategy::CosineHemisphere,
         Strategy::Light,
         Strategy::Area,
         Strategy::Mis(Heuristic::Balance),
         Strategy::Mis(Heuristic::Power),
+        Strategy::Projected,
+        Strategy::ControlVariate,
     ];
 
     /// The name used on the command line and in reports.
@@ -135,34 +156,69 @@ impl Strategy {
             Strategy::Area => "area",
             Strategy::Mis(Heuristic::Power) => "mis",
             Strategy::Mis(Heuristic::Balance) => "mis-balance",
+            Strategy::Projected => "projected",
+            Strategy::ControlVariate => "control-variate",
         }
     }
 
-    /// The technique used for `emitter`: `Auto` picks cosine for a sky
-    /// (zero variance), light sampling for spheres and polygons (exact
-    /// solid-angle samplers; polygons clipped to the horizon), MIS (power)
-    /// for sky caps and disks (which may be large or cross the horizon,
-    /// where cosine sampling wins). It never picks a heavy-tailed technique:
-    /// a disk's light sampler samples by area, whose variance is unbounded
-    /// near the disk (module docs), so `auto` uses it only inside MIS, whose
-    /// weights bound every sample by 3πL/2. For a sphere cut by the
-    /// horizon, `auto` keeps the cone: it hits the visible part with
-    /// probability Ω_visible/Ω, never less often than a hemisphere sampler
-    /// (Ω_visible/2π), and the estimate reports its hits. `Area` on an
-    /// emitter without area (sky, sky cap) uses its light sampler.
-    pub fn resolve(self, emitter: &Emitter) -> Technique {
+    /// The technique used for `emitter` at `receiver`.
+    ///
+    /// `Auto` picks, per emitter kind, the technique that reaches a given
+    /// error soonest where nothing occludes:
+    /// - a sky: cosine sampling (zero variance);
+    /// - a sky cap, a sphere, a polygon: projected-solid-angle sampling
+    ///   (zero variance without occluders, and the importance function
+    ///   L cos θ itself with them; nothing drawn below the horizon): one
+    ///   sample reaches any error, though a sample costs more than a cone
+    ///   or spherical-polygon sample (up to about 10× a spherical
+    ///   rectangle for a polygon away from the zenith; the sampling crate's
+    ///   `ProjectedPolygon` docs give the measured costs);
+    /// - a disk wholly above the horizon: solid-angle sampling of its
+    ///   spherical ellipse (bounded values LΩ cos θ); a disk crossing the
+    ///   horizon: MIS (power) of cosine and solid-angle sampling, since the
+    ///   solid-angle sampler cannot leave out the part below the horizon
+    ///   (no area-preserving map of the cut ellipse is known) and cosine
+    ///   sampling covers it.
+    ///
+    /// It never picks a heavy-tailed technique (area sampling; module
+    /// docs). `Projected` on a disk is solid-angle sampling (no projected
+    /// sampler of a disk is known) and on a sky cosine sampling; `Area` on
+    /// an emitter without area (sky, sky cap) uses its light sampler.
+    pub fn resolve(self, emitter: &Emitter, receiver: &Receiver) -> Technique {
         match (self, emitter) {
             (Strategy::Auto, Emitter::Sky(_)) => Technique::CosineHemisphere,
-            (Strategy::Auto, Emitter::Sphere(_) | Emitter::Polygon(_)) => Technique::Light,
+            (Strategy::Auto, Emitter::Sphere(_) | Emitter::SkyCap(_) | Emitter::Polygon(_)) => {
+                Technique::Projected
+            }
+            (Strategy::Auto, Emitter::Disk(d)) => {
+                if disk_above_horizon(&d.disk, receiver) {
+                    Technique::Light
+                } else {
+                    Technique::Mis(Heuristic::Power)
+                }
+            }
             (Strategy::Auto, _) => Technique::Mis(Heuristic::Power),
             (Strategy::Area, Emitter::Sky(_) | Emitter::SkyCap(_)) => Technique::Light,
+            (Strategy::Projected, Emitter::Sky(_)) => Technique::CosineHemisphere,
+            (Strategy::Projected, Emitter::Disk(_)) => Technique::Light,
             (Strategy::UniformHemisphere, _) => Technique::UniformHemisphere,
             (Strategy::CosineHemisphere, _) => Technique::CosineHemisphere,
             (Strategy::Light, _) => Technique::Light,
             (Strategy::Area, _) => Technique::Area,
             (Strategy::Mis(h), _) => Technique::Mis(h),
+            (Strategy::Projected, _) => Technique::Projected,
+            (Strategy::ControlVariate, _) => Technique::ControlVariate,
         }
     }
+}
+
+/// Whether every point of `disk` lies strictly above the horizon of
+/// `receiver`: its lowest point, the center lowered by R √(1 − (n·n_d)²),
+/// is above the receiver's plane.
+fn disk_above_horizon(disk: &lambert_geometry::f64::Disk, receiver: &Receiver) -> bool {
+    let c = receiver.normal.dot(disk.normal());
+    let reach = disk.radius() * ((1.0 - c) * (1.0 + c)).max(0.0).sqrt();
+    receiver.normal.dot(disk.center() - receiver.point) - reach > 0.0
 }
 
 /// How one emitter's directions are drawn: a [`Strategy`] resolved for
@@ -179,6 +235,10 @@ pub enum Technique {
     Area,
     /// One cosine and one light sample, weighted by the heuristic.
     Mis(Heuristic),
+    /// The emitter's projected-solid-angle sampler ([`EmitterProjected`]).
+    Projected,
+    /// The closed form minus the occluded part ([`ControlVariate`]).
+    ControlVariate,
 }
 
 impl Technique {
@@ -209,9 +269,11 @@ impl FromStr for Strategy {
             "area" => Strategy::Area,
             "mis" | "mis-power" => Strategy::Mis(Heuristic::Power),
             "mis-balance" => Strategy::Mis(Heuristic::Balance),
+            "projected" => Strategy::Projected,
+            "control-variate" => Strategy::ControlVariate,
             other => {
                 return Err(format!(
-                    "unknown strategy {other:?} (expected auto, uniform-hemisphere, cosine-hemisphere, light, area, mis, mis-balance)"
+                    "unknown strategy {other:?} (expected auto, uniform-hemisphere, cosine-hemisphere, light, area, mis, mis-balance, projected, control-variate)"
                 ))
             }
         })

@@ -11,7 +11,7 @@ use lambert_sampling::f64::{
 };
 use lambert_sampling::sequence::SampleSequence;
 
-use super::{EmitterArea, EmitterLight, Strategy, Technique};
+use super::{ControlVariate, EmitterArea, EmitterLight, EmitterProjected, Strategy, Technique};
 
 /// One emitter prepared at one receiver for estimates of
 /// E = ∫ L(ω) V(ω) max(cos θ, 0) dω, where V(ω) ∈ {0, 1} says whether the
@@ -38,17 +38,23 @@ pub struct OccludedEmitter<'a> {
     pub technique: Technique,
     light: EmitterLight,
     area: EmitterArea,
+    projected: EmitterProjected,
+    control: Option<ControlVariate>,
 }
 
 impl<'a> OccludedEmitter<'a> {
     /// Prepares `emitter` (not a delta light: see [`delta_irradiance_visible`])
     /// at `receiver` for `strategy`, resolved for this emitter.
     pub fn new(emitter: &'a Emitter, receiver: &Receiver, strategy: Strategy) -> Self {
+        let technique = strategy.resolve(emitter, receiver);
+        let (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
         OccludedEmitter {
             emitter,
-            technique: strategy.resolve(emitter),
+            technique,
             light: EmitterLight::new(emitter, receiver),
             area: EmitterArea::new(emitter, receiver),
+            projected,
+            control,
         }
     }
 
@@ -81,10 +87,10 @@ impl<'a> OccludedEmitter<'a> {
     }
 
     /// One sample of the estimate from the uniform 2-D points `u` (and
-    /// `u2`, the light sample of MIS). A strategy that uses the emitter's
-    /// unoccluded closed form (control variates: E = E_unoccluded −
-    /// ∫ (1 − V) L cos θ dω) is one more arm here: it has the emitter, the
-    /// receiver and the visibility.
+    /// `u2`, the light sample of MIS). The control variate
+    /// ([`ControlVariate`]) draws its direction from the projected sampler
+    /// (the light sampler for disks) and subtracts what the visibility test
+    /// hides from the closed form.
     #[inline]
     pub fn evaluate_u<V>(&self, receiver: &Receiver, u: DVec2, u2: DVec2, visible: &V) -> f64
     where
@@ -135,6 +141,20 @@ impl<'a> OccludedEmitter<'a> {
                     f += h.weight(s.pdf, p_cos) * seen_cos(s.direction) / s.pdf;
                 }
                 f
+            }
+            Technique::Projected => match self.projected.sample(u) {
+                Some(s) => seen_cos(s.direction) / s.pdf,
+                None => 0.0,
+            },
+            Technique::ControlVariate => {
+                let s = match self.projected {
+                    EmitterProjected::None => self.light.sample(u),
+                    _ => self.projected.sample(u),
+                };
+                match &self.control {
+                    Some(c) => c.sample(self.emitter, receiver, s, visible),
+                    None => s.map_or(0.0, |s| seen_cos(s.direction) / s.pdf),
+                }
             }
         }
     }

@@ -11,7 +11,9 @@ use lambert_sampling::f64::{
 };
 use lambert_sampling::sequence::SampleSequence;
 
-use super::{EmitterArea, EmitterLight, PartBound, Strategy, Technique};
+use super::{
+    ControlVariate, EmitterArea, EmitterLight, EmitterProjected, PartBound, Strategy, Technique,
+};
 
 /// One emitter prepared for estimation at one receiver: its technique, its
 /// samplers, and the bounds of the one or two parts of its one-sample
@@ -24,6 +26,8 @@ pub struct PreparedEmitter {
     pub technique: Technique,
     pub(super) light: EmitterLight,
     pub(super) area: EmitterArea,
+    projected: EmitterProjected,
+    control: Option<ControlVariate>,
     parts: [PartBound; 2],
 }
 
@@ -35,10 +39,19 @@ impl PreparedEmitter {
     /// Prepares `emitter` at `receiver` for `strategy` (resolved for this
     /// emitter).
     pub fn new(emitter: &Emitter, receiver: &Receiver, strategy: Strategy) -> Self {
-        let technique = strategy.resolve(emitter);
+        let technique = strategy.resolve(emitter, receiver);
         let light = EmitterLight::new(emitter, receiver);
         let area = EmitterArea::new(emitter, receiver);
-        let [first, second] = PartBound::of(technique, emitter, receiver, &light, &area);
+        let (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
+        let [first, second] = PartBound::of(
+            technique,
+            emitter,
+            receiver,
+            &light,
+            &area,
+            &projected,
+            control.as_ref(),
+        );
         let none = PartBound {
             max: 0.0,
             shape: super::PartShape::Bounded,
@@ -50,6 +63,8 @@ impl PreparedEmitter {
             technique,
             light,
             area,
+            projected,
+            control,
             parts: [first.unwrap_or(none), second.unwrap_or(none)],
         }
     }
@@ -76,12 +91,42 @@ impl PreparedEmitter {
     }
 
     /// The emitter's radiance when every light sample sees it
-    /// ([`EmitterLight::always_hits`]).
+    /// ([`EmitterLight::always_hits`]), and every projected sample
+    /// ([`EmitterProjected`] samples only what the receiver sees of the
+    /// emitter's lit side).
     pub(super) fn uniform_radiance(&self) -> f64 {
         match &self.emitter {
             Emitter::Sphere(s) => s.radiance,
             Emitter::SkyCap(c) => c.radiance,
+            Emitter::Sky(s) => s.radiance,
+            Emitter::Polygon(p) => p.radiance,
             _ => 0.0,
+        }
+    }
+
+    /// A bound on the error that every sample's value carries alike (W/m²):
+    /// for the `projected` technique, L times the bound on the rounding
+    /// error of the sampler's Ω⊥
+    /// ([`EmitterProjected::projected_solid_angle_error`]), since every
+    /// sample's value is L Ω⊥; 0 for the other techniques, whose samplers'
+    /// normalisation errors are a few ulps of each value and lie under the
+    /// rounding floor.
+    pub fn systematic_error(&self) -> f64 {
+        match self.technique {
+            Technique::Projected => {
+                self.uniform_radiance() * self.projected.projected_solid_angle_error()
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// One projected sample's value L max(n·ω, 0)/p (L Ω⊥ for every
+    /// sample of a uniform emitter), 0 when nothing is sampled.
+    #[inline]
+    fn projected_value(&self, receiver: &Receiver, u: DVec2) -> f64 {
+        match self.projected.sample(u) {
+            Some(s) => self.uniform_radiance() * s.direction.dot(receiver.normal).max(0.0) / s.pdf,
+            None => 0.0,
         }
     }
 
@@ -133,6 +178,18 @@ impl PreparedEmitter {
                 let (cosine, light) = self.mis_parts(receiver, h, u, u2);
                 cosine + light
             }
+            Technique::Projected => self.projected_value(receiver, u),
+            // Nothing occludes here: the control variate is the closed
+            // form itself (V = 1 in every sample); without one, the
+            // residual sampler's plain estimate.
+            Technique::ControlVariate => match (&self.control, &self.projected) {
+                (Some(c), _) => c.unoccluded,
+                (None, EmitterProjected::None) => match self.light.sample(u) {
+                    Some(s) => radiance_cos(s.direction) / s.pdf,
+                    None => 0.0,
+                },
+                (None, _) => self.projected_value(receiver, u),
+            },
         }
     }
 

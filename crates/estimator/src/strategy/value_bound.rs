@@ -13,8 +13,10 @@
 //! | uniform hemisphere | direction | 2πL cos θ | 2πL |
 //! | cosine hemisphere | direction | πL on a hit, else 0 | πL (two values only) |
 //! | light: sky | direction | 4πL cos θ | 4πL |
-//! | light: cap, sphere, polygon | direction | LΩ cos θ | LΩ |
-//! | area (and light on a disk) | point | L cos θ cos θ_l A / d² | L·A·\|h\|/d_min³ (planar), L·A/d_min² (sphere) |
+//! | light: cap, sphere, polygon, disk | direction | LΩ cos θ | LΩ |
+//! | projected: cap, sphere, polygon | direction | L Ω⊥ | L Ω⊥ (the same value in every sample, to rounding) |
+//! | control variate | direction | E_u without occluders | E_u (constant) |
+//! | area | point | L cos θ cos θ_l A / d² | L·A·\|h\|/d_min³ (planar), L·A/d_min² (sphere) |
 //! | MIS, balance | cosine / light | L cos θ/(p_c + p_l) | min(πL, B_l) each |
 //! | MIS, power | cosine | L cos θ p_c/(p_c² + p_l²) | min(πL, B_l/2, B_l²/(πL)) |
 //! | MIS, power | light | L cos θ p_l/(p_c² + p_l²) | min(B_l, πL/2) |
@@ -46,7 +48,7 @@ use lambert_light::emitter::Emitter;
 use lambert_light::receiver::Receiver;
 use std::f64::consts::PI;
 
-use super::{EmitterArea, EmitterLight, Heuristic, Technique};
+use super::{ControlVariate, EmitterArea, EmitterLight, EmitterProjected, Heuristic, Technique};
 
 /// How one part's values are distributed, as far as the technique knows.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -117,13 +119,15 @@ impl PartBound {
 
     /// The bounds of the parts that `technique` draws for `emitter` at
     /// `receiver` (one part, or two for MIS: cosine then light), given the
-    /// prepared light and area samplers.
+    /// prepared light, area and projected samplers and the control variate.
     pub fn of(
         technique: Technique,
         emitter: &Emitter,
         receiver: &Receiver,
         light: &EmitterLight,
         area: &EmitterArea,
+        projected: &EmitterProjected,
+        control: Option<&ControlVariate>,
     ) -> [Option<PartBound>; 2] {
         let l = radiance(emitter);
         let omega = solid_angle(emitter, receiver, light);
@@ -151,6 +155,20 @@ impl PartBound {
                 [Some(part.hit_at_most(omega, 1.0 / PI)), None]
             }
             Technique::Light => [Some(light_bound(light, l)), None],
+            Technique::Projected => [Some(projected_bound(projected, l)), None],
+            Technique::ControlVariate => match (control, projected) {
+                (Some(c), _) => [
+                    Some(PartBound {
+                        max: c.unoccluded.max(0.0),
+                        shape: PartShape::Constant,
+                        hit_probability: 1.0,
+                        name: "closed form",
+                    }),
+                    None,
+                ],
+                (None, EmitterProjected::None) => [Some(light_bound(light, l)), None],
+                (None, _) => [Some(projected_bound(projected, l)), None],
+            },
             Technique::Area => [Some(area_bound(area, l).named("area sample")), None],
             Technique::Mis(h) => {
                 let b_l = light_bound(light, l).max;
@@ -231,11 +249,14 @@ fn light_bound(light: &EmitterLight, l: f64) -> PartBound {
         EmitterLight::Cap(_, cone) => PartBound::bounded(l * cone.solid_angle()),
         EmitterLight::Sphere(s) => PartBound::bounded(l * s.solid_angle()),
         EmitterLight::Polygon(p) => PartBound::bounded(l * p.solid_angle()),
-        EmitterLight::Disk(sampler, receiver) => {
-            planar_area_bound(disk_distance(sampler.disk(), receiver.point), l)
-        }
+        EmitterLight::Disk(d) => PartBound::bounded(l * d.solid_angle()),
         EmitterLight::None => PartBound::bounded(0.0),
     }
+}
+
+/// The bound of projected sampling (module docs' table): L Ω⊥.
+fn projected_bound(projected: &EmitterProjected, l: f64) -> PartBound {
+    PartBound::bounded(l * projected.projected_solid_angle()).named("projected sample")
 }
 
 /// The bound of area sampling (module docs' table).
