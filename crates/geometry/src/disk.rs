@@ -105,8 +105,23 @@ macro_rules! disk_impl {
             #[inline(always)]
             fn lane(&self, origin: V3, direction: V3) -> (bool, Real) {
                 let (hit, t) = plane_lane(origin, direction, self.center, self.frame.z);
-                let p = origin + direction * t - self.center;
-                (hit & (p.length_squared() <= self.radius * self.radius), t)
+                // The hit point relative to the center, formed from c − o
+                // (as t is) rather than from the absolute point o + t·d:
+                // far from the coordinate origin (|o| ≫ radius) the absolute
+                // point rounds by more than the disk's size, which made
+                // every nearby direction a hit.
+                let p = direction * t - (self.center - origin);
+                let r2 = self.radius * self.radius;
+                // r² overflows for radii above ≈ 1e154 (f64): |p|² ≤ r² would
+                // then hold for every p; compare |p/r|² ≤ 1 instead (a
+                // property of the disk, so the branch is the same for every
+                // ray).
+                let inside = if r2.is_finite() {
+                    p.length_squared() <= r2
+                } else {
+                    (p / self.radius).length_squared() <= 1.0
+                };
+                (hit & inside, t)
             }
 
             /// The solid angle, in steradians, that the disk subtends at
