@@ -27,7 +27,7 @@ macro_rules! batch_impl {
 
         /// Rays in structure-of-arrays form: the x, y and z of their
         /// origins and directions in six arrays, for the batch tests of
-        /// [`Intersect`](super::Intersect).
+        /// `Intersect`.
         ///
         /// ```
         #[doc = concat!("use lambert_geometry::", stringify!($p), "::{Intersect, Ray, RayBatch, Sphere};")]

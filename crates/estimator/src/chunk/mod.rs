@@ -13,7 +13,7 @@
 //!   in the first-level cache, and [`PreparedEmitter::add_batch`] adds the
 //!   emitter's estimates to the block's values.
 //! - **No allocation per chunk.** Every buffer is the worker thread's own,
-//!   kept between chunks ([`with_scratch`]): a chunk of 4096 samples used to
+//!   kept between chunks (`with_scratch`): a chunk of 4096 samples used to
 //!   allocate ~160 KB, which the allocator returned to the system and took
 //!   back (page faults, and on two threads TLB shootdowns that stall both).
 //! - **One instruction set for the whole chunk.** The stream, the kernels
