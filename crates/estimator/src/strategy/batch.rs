@@ -26,6 +26,7 @@ use lambert_sampling::f64::{
 };
 
 use super::emitter_light::{sample_cap, sample_disk, sample_polygon, sample_sky, sample_sphere};
+use super::prepared::uniform_cos;
 use super::{
     EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
 };
@@ -305,6 +306,10 @@ fn technique_batch(
         Technique::Mis(h) => mis_batch(
             h,
             receiver,
+            emitter
+                .light
+                .always_hits()
+                .then(|| emitter.uniform_radiance()),
             radiance_cos,
             light_sample,
             light_pdf,
@@ -316,10 +321,18 @@ fn technique_batch(
 
 /// MIS: the weighted cosine-sampled value from `u` plus the weighted
 /// light-sampled value from `v` (Veach & Guibas 1995), counted apart.
+///
+/// `seen` is the radiance of an emitter whose light sampler covers exactly
+/// the directions that see it (a sphere's or sky cap's cone): the light
+/// density then decides whether a cosine-sampled direction sees the
+/// emitter, and a light-sampled one always does, so neither looks the
+/// emitter up (a ray–sphere test with a square root per sample, twice).
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn mis_batch(
     h: Heuristic,
     receiver: &Receiver,
+    seen: Option<f64>,
     radiance_cos: impl Fn(DVec3) -> f64,
     light_sample: impl Fn(DVec2) -> Option<LightDirection>,
     light_pdf: impl Fn(DVec3) -> f64,
@@ -335,13 +348,21 @@ fn mis_batch(
         let p_cos = pdf_cosine_hemisphere(local);
         if p_cos > 0.0 {
             let p_light = light_pdf(w);
-            cosine = h.weight(p_cos, p_light) * radiance_cos(w) / p_cos;
+            let l_cos = match seen {
+                Some(l) => uniform_cos(l, p_light > 0.0, w, receiver.normal),
+                None => radiance_cos(w),
+            };
+            cosine = h.weight(p_cos, p_light) * l_cos / p_cos;
         }
         let mut light = 0.0;
         if let Some(s) = light_sample(block.v(i)) {
             let local = frame.to_local(s.direction);
             let p_cos = pdf_cosine_hemisphere(local);
-            light = h.weight(s.pdf, p_cos) * radiance_cos(s.direction) / s.pdf;
+            let l_cos = match seen {
+                Some(l) => uniform_cos(l, true, s.direction, receiver.normal),
+                None => radiance_cos(s.direction),
+            };
+            light = h.weight(s.pdf, p_cos) * l_cos / s.pdf;
         }
         hits[0] += u64::from(cosine != 0.0);
         hits[1] += u64::from(light != 0.0);
