@@ -66,6 +66,8 @@ impl PreparedEmitter {
                 if self.technique == Technique::Light {
                     return sphere_cone_batch(cone, e.radiance, receiver.normal, &block, out);
                 }
+                // A local copy stays in registers (see `technique_batch`).
+                let cone = &cone.clone();
                 technique_batch(
                     self,
                     receiver,
@@ -142,6 +144,13 @@ impl PreparedEmitter {
         }
     }
 }
+
+/// The stand-in for a light sample that was not drawn, in the branch-free
+/// MIS loop: any unit direction and density 1 (its value is discarded).
+const NO_LIGHT_DIRECTION: LightDirection = LightDirection {
+    direction: DVec3::Z,
+    pdf: 1.0,
+};
 
 /// One block's coordinates, cut to one length.
 struct Block<'a> {
@@ -221,7 +230,10 @@ fn technique_batch(
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
-    let frame = &receiver.frame;
+    // Copies, not references: the compiler keeps a local's fields in
+    // registers across the loop, where loads through a reference inside a
+    // branch became masked gathers on every iteration.
+    let frame = &{ receiver.frame };
     let normal = receiver.normal;
     let radiance_cos = hoisted(
         #[inline(always)]
@@ -339,31 +351,37 @@ fn mis_batch(
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
-    let frame = &receiver.frame;
+    let frame = &{ receiver.frame };
+    let normal = receiver.normal;
     let mut hits = [0u64; 2];
     for (i, o) in out.iter_mut().enumerate() {
-        let mut cosine = 0.0;
         let local = sample_cosine_hemisphere(block.u(i));
         let w = frame.from_local(local);
         let p_cos = pdf_cosine_hemisphere(local);
-        if p_cos > 0.0 {
-            let p_light = light_pdf(w);
-            let l_cos = match seen {
-                Some(l) => uniform_cos(l, p_light > 0.0, w, receiver.normal),
-                None => radiance_cos(w),
-            };
-            cosine = h.weight(p_cos, p_light) * l_cos / p_cos;
-        }
-        let mut light = 0.0;
-        if let Some(s) = light_sample(block.v(i)) {
-            let local = frame.to_local(s.direction);
-            let p_cos = pdf_cosine_hemisphere(local);
-            let l_cos = match seen {
-                Some(l) => uniform_cos(l, true, s.direction, receiver.normal),
-                None => radiance_cos(s.direction),
-            };
-            light = h.weight(s.pdf, p_cos) * l_cos / s.pdf;
-        }
+        // Computed for every lane and selected: under a branch, the
+        // compiler could not keep the light's data in registers and
+        // reloaded it by masked gathers on every iteration.
+        let p_light = light_pdf(w);
+        let l_cos = match seen {
+            Some(l) => uniform_cos(l, p_light > 0.0, w, normal),
+            None => radiance_cos(w),
+        };
+        let weighted = h.weight(p_cos, p_light) * l_cos / p_cos;
+        let cosine = if p_cos > 0.0 { weighted } else { 0.0 };
+        // Also branch-free, for the same reason (a direction and density
+        // stand in where the sampler gave none; their value is not used).
+        let (s, drawn) = match light_sample(block.v(i)) {
+            Some(s) => (s, true),
+            None => (NO_LIGHT_DIRECTION, false),
+        };
+        let local = frame.to_local(s.direction);
+        let p_cos = pdf_cosine_hemisphere(local);
+        let l_cos = match seen {
+            Some(l) => uniform_cos(l, true, s.direction, normal),
+            None => radiance_cos(s.direction),
+        };
+        let weighted = h.weight(s.pdf, p_cos) * l_cos / s.pdf;
+        let light = if drawn { weighted } else { 0.0 };
         hits[0] += u64::from(cosine != 0.0);
         hits[1] += u64::from(light != 0.0);
         *o += cosine + light;
