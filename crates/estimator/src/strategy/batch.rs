@@ -238,9 +238,13 @@ fn technique_batch(
     let radiance_cos = hoisted(
         #[inline(always)]
         |w: DVec3| {
+            // The lookup runs for every lane and the result is selected
+            // (the same value): under the branch, the emitter's data were
+            // reloaded by masked gathers on every iteration.
             let cos = w.dot(normal);
+            let l = radiance(w);
             if cos > 0.0 {
-                radiance(w) * cos
+                l * cos
             } else {
                 0.0
             }
@@ -268,8 +272,9 @@ fn technique_batch(
             |i| {
                 let local = sample_cosine_hemisphere(block.u(i));
                 let w = frame.from_local(local);
+                let l = radiance(w);
                 if local.z > 0.0 {
-                    std::f64::consts::PI * radiance(w)
+                    std::f64::consts::PI * l
                 } else {
                     0.0
                 }
@@ -281,10 +286,22 @@ fn technique_batch(
             single(
                 out,
                 #[inline(always)]
-                |i| match light_sample(block.u(i)) {
-                    Some(s) if always_hits => uniform * s.direction.dot(normal).max(0.0) / s.pdf,
-                    Some(s) => radiance_cos(s.direction) / s.pdf,
-                    None => 0.0,
+                |i| {
+                    // Branch-free, as in `mis_batch`.
+                    let (s, drawn) = match light_sample(block.u(i)) {
+                        Some(s) => (s, true),
+                        None => (NO_LIGHT_DIRECTION, false),
+                    };
+                    let v = if always_hits {
+                        uniform * s.direction.dot(normal).max(0.0) / s.pdf
+                    } else {
+                        radiance_cos(s.direction) / s.pdf
+                    };
+                    if drawn {
+                        v
+                    } else {
+                        0.0
+                    }
                 },
             )
         }
