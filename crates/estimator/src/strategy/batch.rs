@@ -26,6 +26,7 @@ use lambert_sampling::f64::{
 };
 
 use super::emitter_light::{sample_cap, sample_disk, sample_polygon, sample_sky, sample_sphere};
+use super::prepared::uniform_cos;
 use super::{
     EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
 };
@@ -65,6 +66,8 @@ impl PreparedEmitter {
                 if self.technique == Technique::Light {
                     return sphere_cone_batch(cone, e.radiance, receiver.normal, &block, out);
                 }
+                // A local copy stays in registers (see `technique_batch`).
+                let cone = &cone.clone();
                 technique_batch(
                     self,
                     receiver,
@@ -141,6 +144,13 @@ impl PreparedEmitter {
         }
     }
 }
+
+/// The stand-in for a light sample that was not drawn, in the branch-free
+/// MIS loop: any unit direction and density 1 (its value is discarded).
+const NO_LIGHT_DIRECTION: LightDirection = LightDirection {
+    direction: DVec3::Z,
+    pdf: 1.0,
+};
 
 /// One block's coordinates, cut to one length.
 struct Block<'a> {
@@ -220,14 +230,21 @@ fn technique_batch(
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
-    let frame = &receiver.frame;
+    // Copies, not references: the compiler keeps a local's fields in
+    // registers across the loop, where loads through a reference inside a
+    // branch became masked gathers on every iteration.
+    let frame = &{ receiver.frame };
     let normal = receiver.normal;
     let radiance_cos = hoisted(
         #[inline(always)]
         |w: DVec3| {
+            // The lookup runs for every lane and the result is selected
+            // (the same value): under the branch, the emitter's data were
+            // reloaded by masked gathers on every iteration.
             let cos = w.dot(normal);
+            let l = radiance(w);
             if cos > 0.0 {
-                radiance(w) * cos
+                l * cos
             } else {
                 0.0
             }
@@ -255,8 +272,9 @@ fn technique_batch(
             |i| {
                 let local = sample_cosine_hemisphere(block.u(i));
                 let w = frame.from_local(local);
+                let l = radiance(w);
                 if local.z > 0.0 {
-                    std::f64::consts::PI * radiance(w)
+                    std::f64::consts::PI * l
                 } else {
                     0.0
                 }
@@ -268,10 +286,22 @@ fn technique_batch(
             single(
                 out,
                 #[inline(always)]
-                |i| match light_sample(block.u(i)) {
-                    Some(s) if always_hits => uniform * s.direction.dot(normal).max(0.0) / s.pdf,
-                    Some(s) => radiance_cos(s.direction) / s.pdf,
-                    None => 0.0,
+                |i| {
+                    // Branch-free, as in `mis_batch`.
+                    let (s, drawn) = match light_sample(block.u(i)) {
+                        Some(s) => (s, true),
+                        None => (NO_LIGHT_DIRECTION, false),
+                    };
+                    let v = if always_hits {
+                        uniform * s.direction.dot(normal).max(0.0) / s.pdf
+                    } else {
+                        radiance_cos(s.direction) / s.pdf
+                    };
+                    if drawn {
+                        v
+                    } else {
+                        0.0
+                    }
                 },
             )
         }
@@ -305,6 +335,10 @@ fn technique_batch(
         Technique::Mis(h) => mis_batch(
             h,
             receiver,
+            emitter
+                .light
+                .always_hits()
+                .then(|| emitter.uniform_radiance()),
             radiance_cos,
             light_sample,
             light_pdf,
@@ -316,33 +350,55 @@ fn technique_batch(
 
 /// MIS: the weighted cosine-sampled value from `u` plus the weighted
 /// light-sampled value from `v` (Veach & Guibas 1995), counted apart.
+///
+/// `seen` is the radiance of an emitter whose light sampler covers exactly
+/// the directions that see it (a sphere's or sky cap's cone): the light
+/// density then decides whether a cosine-sampled direction sees the
+/// emitter, and a light-sampled one always does, so neither looks the
+/// emitter up (a ray–sphere test with a square root per sample, twice).
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn mis_batch(
     h: Heuristic,
     receiver: &Receiver,
+    seen: Option<f64>,
     radiance_cos: impl Fn(DVec3) -> f64,
     light_sample: impl Fn(DVec2) -> Option<LightDirection>,
     light_pdf: impl Fn(DVec3) -> f64,
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
-    let frame = &receiver.frame;
+    let frame = &{ receiver.frame };
+    let normal = receiver.normal;
     let mut hits = [0u64; 2];
     for (i, o) in out.iter_mut().enumerate() {
-        let mut cosine = 0.0;
         let local = sample_cosine_hemisphere(block.u(i));
         let w = frame.from_local(local);
         let p_cos = pdf_cosine_hemisphere(local);
-        if p_cos > 0.0 {
-            let p_light = light_pdf(w);
-            cosine = h.weight(p_cos, p_light) * radiance_cos(w) / p_cos;
-        }
-        let mut light = 0.0;
-        if let Some(s) = light_sample(block.v(i)) {
-            let local = frame.to_local(s.direction);
-            let p_cos = pdf_cosine_hemisphere(local);
-            light = h.weight(s.pdf, p_cos) * radiance_cos(s.direction) / s.pdf;
-        }
+        // Computed for every lane and selected: under a branch, the
+        // compiler could not keep the light's data in registers and
+        // reloaded it by masked gathers on every iteration.
+        let p_light = light_pdf(w);
+        let l_cos = match seen {
+            Some(l) => uniform_cos(l, p_light > 0.0, w, normal),
+            None => radiance_cos(w),
+        };
+        let weighted = h.weight(p_cos, p_light) * l_cos / p_cos;
+        let cosine = if p_cos > 0.0 { weighted } else { 0.0 };
+        // Also branch-free, for the same reason (a direction and density
+        // stand in where the sampler gave none; their value is not used).
+        let (s, drawn) = match light_sample(block.v(i)) {
+            Some(s) => (s, true),
+            None => (NO_LIGHT_DIRECTION, false),
+        };
+        let local = frame.to_local(s.direction);
+        let p_cos = pdf_cosine_hemisphere(local);
+        let l_cos = match seen {
+            Some(l) => uniform_cos(l, true, s.direction, normal),
+            None => radiance_cos(s.direction),
+        };
+        let weighted = h.weight(s.pdf, p_cos) * l_cos / s.pdf;
+        let light = if drawn { weighted } else { 0.0 };
         hits[0] += u64::from(cosine != 0.0);
         hits[1] += u64::from(light != 0.0);
         *o += cosine + light;

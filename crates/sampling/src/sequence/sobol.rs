@@ -311,6 +311,7 @@ impl Sobol {
     /// `sink(offset, block_seed, first_local, xs, ys)` block by block
     /// (`offset` counts from `first`; `first_local` is the index, within its
     /// block of `2^32`, of `xs[0]`).
+    #[inline(always)]
     fn fill_pair_u32<F>(&self, first: u64, request: u64, len: usize, mut sink: F)
     where
         F: FnMut(usize, u64, u32, &[u32], &[u32]),
@@ -385,7 +386,8 @@ impl SampleSequence for Sobol {
     }
 
     /// The batch kernel of `sobol_batch.rs`: the same values as the cursor,
-    /// to the bit.
+    /// to the bit. Inlined, so it runs in the caller's instruction set.
+    #[inline(always)]
     fn fill_2d(&self, first: u64, request: u64, out: &mut [DVec2]) {
         let d = 2 * request;
         self.fill_pair_u32(

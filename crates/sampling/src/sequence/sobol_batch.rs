@@ -35,15 +35,13 @@
 //! sends consecutive indices to scattered ones, so consecutive `i'` do not
 //! differ in one bit; the byte tables serve any order.
 
-use super::sobol_table::SOBOL_MATRICES;
+use std::sync::OnceLock;
+
+use super::sobol_table::{SOBOL_DIMENSIONS, SOBOL_MATRICES};
 
 /// Indices per block of the structure-of-arrays loops (1 KiB per `u32`
 /// array, so the working set stays in the L1 cache).
 pub(super) const BLOCK: usize = 256;
-
-/// Batches shorter than this compute `A_t · j` bit by bit instead of
-/// building the 4 KiB of byte tables (which costs about 1000 table entries).
-const TABLE_MIN_LEN: usize = 64;
 
 /// The hash `C` of Burley 2020 (listing 2; Laine & Karras 2011 with
 /// Burley's constants), acting on a bit-reversed 32-bit value: output bit
@@ -83,24 +81,27 @@ pub(super) struct PairPlan {
 }
 
 /// `y = A_t · j` for one table dimension `t`, `A_t = R·S_t·R`.
+#[derive(Clone, Copy)]
 enum ReversedMatrix {
     /// `t = 0`: `A_0 = R`.
     Reverse,
+    /// `t = 1`: the Pascal matrix, as a subset transform (below).
+    Pascal,
     /// Byte-wise tables: `y = T_0[j₀] ⊕ T_1[j₁] ⊕ T_2[j₂] ⊕ T_3[j₃]`.
-    Tables(Box<[[u32; 256]; 4]>),
-    /// Bit by bit (short batches): the point-by-point formula.
-    Direct(usize),
+    Tables(&'static [[u32; 256]; 4]),
 }
 
-impl ReversedMatrix {
-    fn new(dim: usize, len: usize) -> Self {
-        if dim == 0 {
-            return ReversedMatrix::Reverse;
-        }
-        if len < TABLE_MIN_LEN {
-            return ReversedMatrix::Direct(dim);
-        }
-        // Column b of A_t: A_t · 2^b = R(S_t · 2^(31−b)) = R(v_{t,31−b}).
+/// The byte tables of every dimension that has needed them, built on
+/// first use (1024 entries, 4 KiB, per dimension) and kept for the life of
+/// the process: a batch no longer pays for them (building them per batch
+/// cost about 3 % of a Sobol-driven estimate).
+static TABLES: [OnceLock<Box<[[u32; 256]; 4]>>; SOBOL_DIMENSIONS] =
+    [const { OnceLock::new() }; SOBOL_DIMENSIONS];
+
+/// The byte tables of `A_t` (module docs): column b of `A_t` is
+/// `A_t · 2^b = R(S_t · 2^(31−b)) = R(v_{t,31−b})`.
+fn tables(dim: usize) -> &'static [[u32; 256]; 4] {
+    TABLES[dim].get_or_init(|| {
         let v = &SOBOL_MATRICES[dim];
         let mut tables = Box::new([[0u32; 256]; 4]);
         for (q, table) in tables.iter_mut().enumerate() {
@@ -109,15 +110,58 @@ impl ReversedMatrix {
                 table[byte] = table[byte & (byte - 1)] ^ v[31 - (8 * q + low)].reverse_bits();
             }
         }
-        ReversedMatrix::Tables(tables)
+        tables
+    })
+}
+
+/// `A_1 · j` for the second Sobol dimension, whose generator matrix is
+/// Pascal's triangle mod 2 (its primitive polynomial is x + 1 and every
+/// direction number m_k = 1, so v_k = v_{k−1} ⊕ (v_{k−1} ≫ 1); Joe & Kuo
+/// 2008). By Lucas' theorem binomial(a, c) is odd iff the bits of c are a
+/// subset of those of a. Index bit a contributes to digit c of `S_1 · i`
+/// iff c ⊆ a; in reversed coordinates (a 5-bit position p ↔ 31 − p, which
+/// complements it) bit b of `j` contributes to bit c of `y = A_1 · j` iff
+/// b ∧ c = 0. That matrix is the Kronecker product, over the five bits of a
+/// position, of the 2 × 2 matrix [[1, 1], [1, 0]]: one butterfly per bit
+/// level l, (y_lo, y_hi) ← (y_lo ⊕ y_hi, y_lo) for the position pairs that
+/// differ in bit l only (the fast transform of a Kronecker product, as in
+/// Yates 1937). Five shift-and-mask steps: no table, no gather, and
+/// exactly the table's value (tested on every basis vector).
+#[inline(always)]
+fn pascal_reversed(mut y: u32) -> u32 {
+    for (shift, low) in [
+        (1, 0x5555_5555u32),
+        (2, 0x3333_3333),
+        (4, 0x0f0f_0f0f),
+        (8, 0x00ff_00ff),
+        (16, 0x0000_ffff),
+    ] {
+        y = ((y ^ (y >> shift)) & low) | ((y << shift) & !low);
+    }
+    y
+}
+
+impl ReversedMatrix {
+    fn new(dim: usize) -> Self {
+        match dim {
+            0 => ReversedMatrix::Reverse,
+            1 => ReversedMatrix::Pascal,
+            _ => ReversedMatrix::Tables(tables(dim)),
+        }
     }
 
     /// `y[k] = A_t · j[k]`.
+    #[inline(always)]
     fn apply(&self, j: &[u32], y: &mut [u32]) {
         match self {
             ReversedMatrix::Reverse => {
                 for (y, &j) in y.iter_mut().zip(j) {
                     *y = j.reverse_bits();
+                }
+            }
+            ReversedMatrix::Pascal => {
+                for (y, &j) in y.iter_mut().zip(j) {
+                    *y = pascal_reversed(j);
                 }
             }
             ReversedMatrix::Tables(t) => {
@@ -129,17 +173,13 @@ impl ReversedMatrix {
                         ^ t[3][usize::from(b[3])];
                 }
             }
-            ReversedMatrix::Direct(dim) => {
-                for (y, &j) in y.iter_mut().zip(j) {
-                    *y = super::sobol::sobol_u32(j.reverse_bits(), *dim).reverse_bits();
-                }
-            }
         }
     }
 }
 
 /// Scrambles reversed coordinates `y` in place and returns them to natural
 /// bit order: `y ← R(C(y, k))` (or the full Owen scramble of `R(y)`).
+#[inline(always)]
 fn finish(scramble: CoordinateScramble, y: &mut [u32]) {
     match scramble {
         CoordinateScramble::None => {
@@ -163,12 +203,16 @@ fn finish(scramble: CoordinateScramble, y: &mut [u32]) {
 /// The two scrambled coordinates of indices `first … first + len − 1`
 /// (which must not pass `2^32 − 1`), handed to `sink(offset, xs, ys)` in
 /// blocks of at most [`BLOCK`], `offset` counting from `first`.
+///
+/// Inlined into its caller, so that it runs in the caller's instruction
+/// set (the estimator calls it inside [`crate::isa::Isa::run`]).
+#[inline(always)]
 pub(super) fn fill_pair<F>(plan: &PairPlan, first: u32, len: usize, mut sink: F)
 where
     F: FnMut(usize, &[u32], &[u32]),
 {
     debug_assert!(len == 0 || u64::from(first) + (len as u64 - 1) <= u64::from(u32::MAX));
-    let matrices = plan.dims.map(|d| ReversedMatrix::new(d, len));
+    let matrices = plan.dims.map(ReversedMatrix::new);
     let mut j = [0u32; BLOCK];
     let mut xs = [0u32; BLOCK];
     let mut ys = [0u32; BLOCK];
@@ -196,5 +240,33 @@ where
         }
         sink(offset, &xs[..m], &ys[..m]);
         offset += m;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `A_1 · j` by the subset transform equals the generator matrix's
+    /// value on every basis vector (column b of `A_1` is `R(v_{1,31−b})`),
+    /// hence everywhere, the map being linear over GF(2); and the byte
+    /// tables of dimension 1 agree on arbitrary values.
+    #[test]
+    fn pascal_transform_is_the_second_dimension() {
+        let v = &SOBOL_MATRICES[1];
+        for b in 0..32 {
+            assert_eq!(pascal_reversed(1 << b), v[31 - b].reverse_bits(), "bit {b}");
+        }
+        let t = tables(1);
+        let mut x = 0x9e37_79b9u32;
+        for _ in 0..1000 {
+            x = x.wrapping_mul(0x2c1b_3c6d).wrapping_add(0x297a_2d39);
+            let b = x.to_le_bytes();
+            let want = t[0][usize::from(b[0])]
+                ^ t[1][usize::from(b[1])]
+                ^ t[2][usize::from(b[2])]
+                ^ t[3][usize::from(b[3])];
+            assert_eq!(pascal_reversed(x), want);
+        }
     }
 }

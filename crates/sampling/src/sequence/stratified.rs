@@ -215,7 +215,9 @@ impl SampleSequence for Stratified {
     }
 
     /// The batch kernel of `stratified_batch.rs`: the same values as the
-    /// cursor, to the bit.
+    /// cursor, to the bit. Inlined, so it runs in the caller's instruction
+    /// set (the estimator calls it inside `Isa::run`).
+    #[inline(always)]
     fn fill_2d(&self, first: u64, request: u64, out: &mut [DVec2]) {
         let n = u64::from(self.n);
         let dim = 2 * request;

@@ -310,7 +310,8 @@ pub(super) struct PassPlan {
 }
 
 /// The 2-D points of positions `first … first + out.len() − 1` of one pass
-/// (all `< n`), written to `out`.
+/// (all `< n`), written to `out`. Inlined into the caller's instruction set.
+#[inline(always)]
 pub(super) fn fill_pass(
     plan: &PassPlan,
     cache: &KeyCache,
