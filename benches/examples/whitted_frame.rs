@@ -6,10 +6,10 @@
 //!
 //! ```text
 //! cargo build --release -p lambert-benches --example whitted_frame
-//! target/release/examples/whitted_frame 20 2
+//! target/release/examples/whitted_frame 20 2 [TILE]
 //! ```
 //!
-//! prints the median and fastest frame's milliseconds and the rays per
+//! (`TILE`: the tile side, 16 by default) prints the median and fastest frame's milliseconds and the rays per
 //! second of the median frame. Timed assertions have no place here: the
 //! figures are for comparing two builds in one session.
 
@@ -28,10 +28,12 @@ fn main() {
     };
     let frames = next("frames", 20);
     let threads = next("threads", 1).max(1);
+    let tile = next("tile", 16).max(1) as u32;
     let scene = builtin::whitted();
     let config = RenderConfig {
         mode: Mode::Whitted,
         max_depth: 5,
+        tile,
         ..RenderConfig::default()
     };
     let pool = rayon::ThreadPoolBuilder::new()
