@@ -8,7 +8,9 @@
 //! geometry crate's `nearest_in_batch` and `occludes_in_batch`), compiled
 //! for the widest instruction set the processor has
 //! ([`lambert_sampling::isa::Isa`]); a scene with a BVH is searched ray by
-//! ray inside the same batches.
+//! ray inside the same batches. Between the hit tests and shading, the
+//! rays are grouped by the primitive they hit, so that each material is
+//! shaded in a loop of its own with its shape known.
 //!
 //! **The image is the recursive tracer's, to the bit.** Each ray is shaded
 //! by the same functions in the same order of operations; what changes is
@@ -223,7 +225,7 @@ fn record_hits<S: Intersect>(
     run: &[u32],
     rays: &[Ray],
     nearest: &[f64],
-    s: &mut Pending2,
+    s: &mut Recorded,
 ) {
     let textured = matches!(material.surface, Surface::Diffuse(Texture::Checker { .. }));
     for &i in run {
@@ -266,7 +268,7 @@ fn record_hits<S: Intersect>(
 }
 
 /// The vectors [`record_hits`] fills.
-struct Pending2<'a> {
+struct Recorded<'a> {
     pending: &'a mut Vec<Pending>,
     shadow: &'a mut Vec<Ray>,
     shadow_t_max: &'a mut Vec<f64>,
@@ -318,7 +320,7 @@ fn generation(
         if !run.is_empty() {
             let primitive = aggregate.primitive(k as u32);
             let material = scene.material_of(primitive);
-            let mut out = Pending2 {
+            let mut out = Recorded {
                 pending: &mut s.pending,
                 shadow: &mut s.shadow,
                 shadow_t_max: &mut s.shadow_t_max,
