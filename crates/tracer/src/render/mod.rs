@@ -8,7 +8,6 @@
 //! the order in which tiles finish.
 
 mod context;
-mod hit_lanes;
 mod irradiance;
 mod raycast;
 mod wavefront;

@@ -24,18 +24,18 @@
 //! order, are traced by the recursive tracer.
 
 use glam::DVec3;
-use lambert_geometry::f64::{Hit, Ray, RayBatch};
+use lambert_geometry::f64::{Hit, Intersect, Ray, RayBatch};
 use lambert_sampling::isa::Isa;
 
 use super::context::{DeltaLight, Direct, RayCounts};
-use super::hit_lanes::{HitLanes, Pending, Recorded};
 use super::{Pixel, RenderConfig};
 use crate::camera::Camera;
 use crate::color::Rgb;
-use crate::material::Surface;
+use crate::material::{Material, Surface};
 use crate::optics::{fresnel_dielectric, reflect, refract};
 use crate::scene::Scene;
 use crate::shape::Shape;
+use crate::texture::Texture;
 
 /// No primitive, no child.
 const NONE: u32 = u32::MAX;
@@ -70,6 +70,21 @@ impl Node {
     }
 }
 
+/// A hit of the current generation, between its shadow rays and its
+/// shading.
+#[derive(Clone, Copy, Debug)]
+struct Pending {
+    /// Its ray's index in the generation.
+    ray: u32,
+    /// Its delta lights with cos > 0 (or NaN): `lights[first..end]`, one
+    /// shadow ray each, in the scene's order of emitters.
+    first: u32,
+    end: u32,
+    /// The hit, with its surface parameters where the material's texture
+    /// varies (zero otherwise).
+    hit: Hit,
+}
+
 /// What a thread reuses from tile to tile.
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
@@ -88,7 +103,6 @@ pub(super) struct Scratch {
     runs: Vec<u32>,
     /// Primitive k's hits are `pending[hit_runs[k]..hit_runs[k + 1]]`.
     hit_runs: Vec<u32>,
-    lanes: HitLanes,
     pending: Vec<Pending>,
     shadow: Vec<Ray>,
     shadow_t_max: Vec<f64>,
@@ -199,6 +213,68 @@ fn group_by_primitive(primitives: usize, s: &mut Scratch) {
     }
 }
 
+/// The hit records of the rays `run` that hit `shape` (material
+/// `material`), and the shadow ray toward each delta light above each
+/// hit that the material shades with direct light.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn record_hits<S: Intersect>(
+    shape: &S,
+    material: &Material,
+    scene: &Scene,
+    run: &[u32],
+    rays: &[Ray],
+    nearest: &[f64],
+    s: &mut Recorded,
+) {
+    let textured = matches!(material.surface, Surface::Diffuse(Texture::Checker { .. }));
+    for &i in run {
+        let ray = &rays[i as usize];
+        let t = nearest[i as usize];
+        let mut hit = shape.hit_at(ray, t);
+        if textured {
+            hit.uv = shape.surface_parameters(ray, t);
+        }
+        let front = hit.is_front(ray.direction);
+        let lit = match material.surface {
+            Surface::Emitter { .. } => false,
+            Surface::Diffuse(_) => true,
+            Surface::Mirror(_) => material.highlight.is_some(),
+            Surface::Dielectric { .. } => material.highlight.is_some() && front,
+        };
+        let first = s.lights.len();
+        if lit {
+            let normal = hit.facing_normal(ray.direction);
+            for e in scene.emitters() {
+                let Some(light) = DeltaLight::seen_from(e, hit.point, normal) else {
+                    continue;
+                };
+                if light.cos <= 0.0 {
+                    continue;
+                }
+                let (shadow, t_max) = Scene::shadow_ray(&hit, light.direction, light.distance);
+                s.shadow.push(shadow);
+                s.shadow_t_max.push(t_max);
+                s.lights.push(light);
+            }
+        }
+        s.pending.push(Pending {
+            ray: i,
+            first: first as u32,
+            end: s.lights.len() as u32,
+            hit,
+        });
+    }
+}
+
+/// The vectors [`record_hits`] fills.
+struct Recorded<'a> {
+    pending: &'a mut Vec<Pending>,
+    shadow: &'a mut Vec<Ray>,
+    shadow_t_max: &'a mut Vec<f64>,
+    lights: &'a mut Vec<DeltaLight>,
+}
+
 /// Traces the generation `s.rays` (at recursion `depth`): nearest hits,
 /// shadow rays, shading; their reflected and refracted rays go to
 /// `s.next_rays`.
@@ -250,22 +326,18 @@ fn generation(
                 shadow_t_max: &mut s.shadow_t_max,
                 lights: &mut s.lights,
             };
-            let (rays, nearest, lanes) = (&s.rays[..], &s.nearest[..], &mut s.lanes);
-            let emitters = scene.emitters();
-            macro_rules! record {
-                ($shape:expr) => {
-                    lanes.record(
-                        isa, $shape, material, emitters, run, rays, nearest, &mut out,
-                    )
-                };
-            }
+            let (rays, nearest) = (&s.rays[..], &s.nearest[..]);
             match &primitive.shape {
-                Shape::Sphere(x) => record!(x),
-                Shape::Plane(x) => record!(x),
-                Shape::Disk(x) => record!(x),
-                Shape::Triangle(x) => record!(x),
-                Shape::Parallelogram(x) => record!(x),
-                Shape::Polygon(x) => record!(&**x),
+                Shape::Sphere(x) => record_hits(x, material, scene, run, rays, nearest, &mut out),
+                Shape::Plane(x) => record_hits(x, material, scene, run, rays, nearest, &mut out),
+                Shape::Disk(x) => record_hits(x, material, scene, run, rays, nearest, &mut out),
+                Shape::Triangle(x) => record_hits(x, material, scene, run, rays, nearest, &mut out),
+                Shape::Parallelogram(x) => {
+                    record_hits(x, material, scene, run, rays, nearest, &mut out)
+                }
+                Shape::Polygon(x) => {
+                    record_hits(&**x, material, scene, run, rays, nearest, &mut out)
+                }
             }
         }
         s.hit_runs.push(s.pending.len() as u32);
