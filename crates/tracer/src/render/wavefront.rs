@@ -468,7 +468,7 @@ struct Shaded<'a> {
 impl Shaded<'_> {
     /// Spawns the ray leaving `hit` along `direction` into the next
     /// generation; its node's index.
-    #[inline]
+    #[inline(always)]
     fn follow(&mut self, hit: &Hit, direction: DVec3) -> u32 {
         let child = self.nodes.len() as u32;
         self.nodes.push(Node::leaf(Rgb::BLACK));
