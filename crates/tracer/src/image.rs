@@ -15,6 +15,29 @@ pub struct Image {
     std_error: Option<Vec<f32>>,
 }
 
+/// A band of whole rows of an [`Image`] ([`Image::bands_mut`]), with
+/// its own row numbers (0 at its top row).
+#[derive(Debug)]
+pub(crate) struct Band<'a> {
+    width: usize,
+    rgb: &'a mut [[f32; 3]],
+    irradiance: &'a mut [f32],
+    std_error: Option<&'a mut [f32]>,
+}
+
+impl Band<'_> {
+    /// Stores a pixel (rounded to f32) at column `x` of the band's row `y`.
+    #[inline]
+    pub(crate) fn set(&mut self, x: u32, y: u32, p: &Pixel) {
+        let i = y as usize * self.width + x as usize;
+        self.rgb[i] = p.rgb.to_f32();
+        self.irradiance[i] = p.irradiance as f32;
+        if let Some(s) = &mut self.std_error {
+            s[i] = p.std_error as f32;
+        }
+    }
+}
+
 impl Image {
     /// A black image, with a standard-error layer if `with_std_error`.
     pub fn new(width: u32, height: u32, with_std_error: bool) -> Self {
@@ -71,6 +94,29 @@ impl Image {
         if let Some(s) = &mut self.std_error {
             s[i] = p.std_error as f32;
         }
+    }
+
+    /// The image cut into bands of `rows` rows (the last may be
+    /// shorter), top to bottom, each writable on its own: a renderer fills
+    /// them in parallel.
+    ///
+    /// # Panics
+    /// If `rows` is 0.
+    pub(crate) fn bands_mut(&mut self, rows: u32) -> Vec<Band<'_>> {
+        assert!(rows > 0, "bands of at least one row");
+        let width = self.width as usize;
+        let len = width * rows as usize;
+        let mut std_error = self.std_error.as_mut().map(|s| s.chunks_mut(len));
+        self.rgb
+            .chunks_mut(len)
+            .zip(self.irradiance.chunks_mut(len))
+            .map(|(rgb, irradiance)| Band {
+                width,
+                rgb,
+                irradiance,
+                std_error: std_error.as_mut().and_then(|s| s.next()),
+            })
+            .collect()
     }
 
     /// The RGB radiance of pixel (x, y).

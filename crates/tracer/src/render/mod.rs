@@ -231,17 +231,28 @@ pub fn render(
             Ok((pixels, cx.counts()))
         })
         .collect();
+    // The first error in tile order, or every tile's pixels.
+    let results = results.into_iter().collect::<Result<Vec<_>, _>>()?;
+    let rays = results
+        .iter()
+        .fold(RayCounts::default(), |sum, (_, counts)| sum.plus(*counts));
+    // Tiles into the image a band of tile rows at a time, in parallel (one
+    // thread copying the whole image held up the other).
     let mut image = Image::new(w, h, config.mode == Mode::Irradiance);
-    let mut rays = RayCounts::default();
-    for (&(x0, y0), result) in tiles.iter().zip(results) {
-        let (pixels, counts) = result?;
-        rays = rays.plus(counts);
-        let tw = (x0 + t).min(w) - x0;
-        for (k, p) in pixels.iter().enumerate() {
-            let (x, y) = (x0 + k as u32 % tw, y0 + k as u32 / tw);
-            image.set(x, y, p);
-        }
-    }
+    let tiles_per_row = w.div_ceil(t) as usize;
+    image
+        .bands_mut(t)
+        .into_par_iter()
+        .zip(results.par_chunks(tiles_per_row))
+        .for_each(|(mut band, row)| {
+            for (tx, (pixels, _)) in row.iter().enumerate() {
+                let x0 = tx as u32 * t;
+                let tw = (x0 + t).min(w) - x0;
+                for (k, p) in pixels.iter().enumerate() {
+                    band.set(x0 + k as u32 % tw, k as u32 / tw, p);
+                }
+            }
+        });
     let seconds = start.elapsed().as_secs_f64();
     Ok(Rendered {
         stats: RenderStats {

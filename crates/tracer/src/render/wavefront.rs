@@ -8,7 +8,9 @@
 //! geometry crate's `nearest_in_batch` and `occludes_in_batch`), compiled
 //! for the widest instruction set the processor has
 //! ([`lambert_sampling::isa::Isa`]); a scene with a BVH is searched ray by
-//! ray inside the same batches.
+//! ray inside the same batches. Between the hit tests and shading, the
+//! rays are grouped by the primitive they hit, so that each material is
+//! shaded in a loop of its own with its shape known.
 //!
 //! **The image is the recursive tracer's, to the bit.** Each ray is shaded
 //! by the same functions in the same order of operations; what changes is
@@ -22,16 +24,18 @@
 //! order, are traced by the recursive tracer.
 
 use glam::DVec3;
-use lambert_geometry::f64::{Hit, Ray, RayBatch};
+use lambert_geometry::f64::{Hit, Intersect, Ray, RayBatch};
 use lambert_sampling::isa::Isa;
 
 use super::context::{DeltaLight, Direct, RayCounts};
 use super::{Pixel, RenderConfig};
 use crate::camera::Camera;
 use crate::color::Rgb;
-use crate::material::Surface;
+use crate::material::{Material, Surface};
 use crate::optics::{fresnel_dielectric, reflect, refract};
 use crate::scene::Scene;
+use crate::shape::Shape;
+use crate::texture::Texture;
 
 /// No primitive, no child.
 const NONE: u32 = u32::MAX;
@@ -76,6 +80,8 @@ struct Pending {
     /// shadow ray each, in the scene's order of emitters.
     first: u32,
     end: u32,
+    /// The hit, with its surface parameters where the material's texture
+    /// varies (zero otherwise).
     hit: Hit,
 }
 
@@ -91,6 +97,12 @@ pub(super) struct Scratch {
     next_nodes: Vec<u32>,
     nearest: Vec<f64>,
     ids: Vec<u32>,
+    /// The generation's rays grouped by the primitive they hit (misses
+    /// last): primitive k's are `order[runs[k]..runs[k + 1]]`.
+    order: Vec<u32>,
+    runs: Vec<u32>,
+    /// Primitive k's hits are `pending[hit_runs[k]..hit_runs[k + 1]]`.
+    hit_runs: Vec<u32>,
     pending: Vec<Pending>,
     shadow: Vec<Ray>,
     shadow_t_max: Vec<f64>,
@@ -173,42 +185,56 @@ pub(super) fn tile(
     (out, counts)
 }
 
-/// Traces the generation `s.rays` (at recursion `depth`): nearest hits,
-/// shadow rays, shading; their reflected and refracted rays go to
-/// `s.next_rays`.
-fn generation(
-    scene: &Scene,
-    config: &RenderConfig,
-    isa: Isa,
-    depth: u32,
-    s: &mut Scratch,
-    counts: &mut RayCounts,
-) {
-    let n = s.rays.len();
-    let aggregate = scene.aggregate();
-    s.batch.assign(&s.rays);
-    s.nearest.clear();
-    s.nearest.resize(n, f64::INFINITY);
-    s.ids.clear();
-    s.ids.resize(n, NONE);
-    isa.run(
-        #[inline(always)]
-        || aggregate.nearest_in_batch(&s.batch, &mut s.nearest, &mut s.ids),
-    );
+/// Groups the rays of the generation by the primitive they hit, misses
+/// last (a counting sort on `s.ids`, stable): shading then runs material
+/// by material, each in its own loop, instead of switching on the
+/// material and shape ray by ray (on the `whitted` scene the rays of a
+/// generation alternate between the board, the glass and the sky, and
+/// the switches were the tracer's most mispredicted branches).
+fn group_by_primitive(primitives: usize, s: &mut Scratch) {
+    let slot = |id: u32| if id == NONE { primitives } else { id as usize };
+    s.runs.clear();
+    s.runs.resize(primitives + 2, 0);
+    for &id in &s.ids {
+        s.runs[slot(id) + 1] += 1;
+    }
+    for k in 0..=primitives {
+        s.runs[k + 1] += s.runs[k];
+    }
+    s.order.clear();
+    s.order.resize(s.ids.len(), 0);
+    // The next free place of each run, in `hit_runs` for now.
+    s.hit_runs.clear();
+    s.hit_runs.extend_from_slice(&s.runs[..=primitives]);
+    for (i, &id) in s.ids.iter().enumerate() {
+        let k = slot(id);
+        s.order[s.hit_runs[k] as usize] = i as u32;
+        s.hit_runs[k] += 1;
+    }
+}
 
-    // The hits, and the shadow ray toward each delta light above each.
-    s.shadow.clear();
-    s.shadow_t_max.clear();
-    s.lights.clear();
-    s.pending.clear();
-    for (i, ray) in s.rays.iter().enumerate() {
-        if s.ids[i] == NONE {
-            s.nodes[s.ray_nodes[i] as usize] = Node::leaf(scene.escaped(ray.direction));
-            continue;
+/// The hit records of the rays `run` that hit `shape` (material
+/// `material`), and the shadow ray toward each delta light above each
+/// hit that the material shades with direct light.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn record_hits<S: Intersect>(
+    shape: &S,
+    material: &Material,
+    scene: &Scene,
+    run: &[u32],
+    rays: &[Ray],
+    nearest: &[f64],
+    s: &mut Recorded,
+) {
+    let textured = matches!(material.surface, Surface::Diffuse(Texture::Checker { .. }));
+    for &i in run {
+        let ray = &rays[i as usize];
+        let t = nearest[i as usize];
+        let mut hit = shape.hit_at(ray, t);
+        if textured {
+            hit.uv = shape.surface_parameters(ray, t);
         }
-        let primitive = aggregate.primitive(s.ids[i]);
-        let hit = primitive.shape.hit_at(ray, s.nearest[i]);
-        let material = scene.material_of(primitive);
         let front = hit.is_front(ray.direction);
         let lit = match material.surface {
             Surface::Emitter { .. } => false,
@@ -233,11 +259,88 @@ fn generation(
             }
         }
         s.pending.push(Pending {
-            ray: i as u32,
+            ray: i,
             first: first as u32,
             end: s.lights.len() as u32,
             hit,
         });
+    }
+}
+
+/// The vectors [`record_hits`] fills.
+struct Recorded<'a> {
+    pending: &'a mut Vec<Pending>,
+    shadow: &'a mut Vec<Ray>,
+    shadow_t_max: &'a mut Vec<f64>,
+    lights: &'a mut Vec<DeltaLight>,
+}
+
+/// Traces the generation `s.rays` (at recursion `depth`): nearest hits,
+/// shadow rays, shading; their reflected and refracted rays go to
+/// `s.next_rays`.
+fn generation(
+    scene: &Scene,
+    config: &RenderConfig,
+    isa: Isa,
+    depth: u32,
+    s: &mut Scratch,
+    counts: &mut RayCounts,
+) {
+    let n = s.rays.len();
+    let aggregate = scene.aggregate();
+    s.batch.assign(&s.rays);
+    s.nearest.clear();
+    s.nearest.resize(n, f64::INFINITY);
+    s.ids.clear();
+    s.ids.resize(n, NONE);
+    isa.run(
+        #[inline(always)]
+        || aggregate.nearest_in_batch(&s.batch, &mut s.nearest, &mut s.ids),
+    );
+    let primitives = aggregate.len();
+    group_by_primitive(primitives, s);
+
+    // Rays that escape.
+    let misses = s.runs[primitives] as usize..s.runs[primitives + 1] as usize;
+    for &i in &s.order[misses] {
+        let i = i as usize;
+        s.nodes[s.ray_nodes[i] as usize] = Node::leaf(scene.escaped(s.rays[i].direction));
+    }
+
+    // The hits, primitive by primitive, and the shadow ray toward each
+    // delta light above each.
+    s.shadow.clear();
+    s.shadow_t_max.clear();
+    s.lights.clear();
+    s.pending.clear();
+    s.hit_runs.clear();
+    s.hit_runs.push(0);
+    for k in 0..primitives {
+        let run = &s.order[s.runs[k] as usize..s.runs[k + 1] as usize];
+        if !run.is_empty() {
+            let primitive = aggregate.primitive(k as u32);
+            let material = scene.material_of(primitive);
+            let mut out = Recorded {
+                pending: &mut s.pending,
+                shadow: &mut s.shadow,
+                shadow_t_max: &mut s.shadow_t_max,
+                lights: &mut s.lights,
+            };
+            let (rays, nearest) = (&s.rays[..], &s.nearest[..]);
+            match &primitive.shape {
+                Shape::Sphere(x) => record_hits(x, material, scene, run, rays, nearest, &mut out),
+                Shape::Plane(x) => record_hits(x, material, scene, run, rays, nearest, &mut out),
+                Shape::Disk(x) => record_hits(x, material, scene, run, rays, nearest, &mut out),
+                Shape::Triangle(x) => record_hits(x, material, scene, run, rays, nearest, &mut out),
+                Shape::Parallelogram(x) => {
+                    record_hits(x, material, scene, run, rays, nearest, &mut out)
+                }
+                Shape::Polygon(x) => {
+                    record_hits(&**x, material, scene, run, rays, nearest, &mut out)
+                }
+            }
+        }
+        s.hit_runs.push(s.pending.len() as u32);
     }
     s.batch.assign(&s.shadow);
     s.blocked.clear();
@@ -248,92 +351,130 @@ fn generation(
     );
     counts.shadow += s.shadow.len() as u64;
 
-    // Shading, and the next generation.
+    // Shading, material by material, and the next generation.
     s.next_rays.clear();
     s.next_nodes.clear();
     let deeper = depth < config.max_depth;
-    for p in &s.pending {
-        let i = p.ray as usize;
-        let ray = &s.rays[i];
-        let node_index = s.ray_nodes[i] as usize;
-        let primitive = aggregate.primitive(s.ids[i]);
-        let material = scene.material_of(primitive);
-        let d = ray.direction;
-        let front = p.hit.is_front(d);
-        let normal = p.hit.facing_normal(d);
-        let wo = -d;
-        let highlight = material.highlight.as_ref();
-        let mut direct = Direct::default();
-        let lights = p.first as usize..p.end as usize;
-        for (light, &blocked) in s.lights[lights.clone()].iter().zip(&s.blocked[lights]) {
-            if !blocked {
-                direct.add(light, normal, wo, highlight);
-            }
+    let mut out = Shaded {
+        nodes: &mut s.nodes,
+        next_rays: &mut s.next_rays,
+        next_nodes: &mut s.next_nodes,
+    };
+    let (rays, ray_nodes, lights, blocked) =
+        (&s.rays[..], &s.ray_nodes[..], &s.lights[..], &s.blocked[..]);
+    for k in 0..primitives {
+        let hits = &s.pending[s.hit_runs[k] as usize..s.hit_runs[k + 1] as usize];
+        if hits.is_empty() {
+            continue;
         }
-        let mut follow = |direction: DVec3| -> u32 {
-            let child = s.nodes.len() as u32;
-            s.nodes.push(Node::leaf(Rgb::BLACK));
-            s.next_rays.push(p.hit.spawn_ray(direction));
-            s.next_nodes.push(child);
-            child
+        let material = scene.material_of(aggregate.primitive(k as u32));
+        let highlight = material.highlight.as_ref();
+        // The direct light at a hit: its unblocked delta lights (none
+        // where the material is not lit).
+        let direct = |p: &Pending, normal: DVec3, wo: DVec3| {
+            let mut direct = Direct::default();
+            let range = p.first as usize..p.end as usize;
+            for (light, &blocked) in lights[range.clone()].iter().zip(&blocked[range]) {
+                if !blocked {
+                    direct.add(light, normal, wo, highlight);
+                }
+            }
+            direct
         };
-        let node = match material.surface {
+        match material.surface {
             Surface::Emitter {
                 radiance,
                 two_sided,
-            } => Node::leaf(Rgb::grey(if front || two_sided { radiance } else { 0.0 })),
-            Surface::Diffuse(texture) => {
-                if depth == 0 {
-                    s.first_irradiance[node_index] = direct.irradiance;
+            } => {
+                for p in hits {
+                    let i = p.ray as usize;
+                    let front = p.hit.is_front(rays[i].direction);
+                    let l = if front || two_sided { radiance } else { 0.0 };
+                    out.nodes[ray_nodes[i] as usize] = Node::leaf(Rgb::grey(l));
                 }
-                let albedo =
-                    texture.at_lazy(|| primitive.shape.surface_parameters(ray, p.hit.distance));
-                Node::leaf(albedo * (direct.irradiance / std::f64::consts::PI) + direct.highlight)
+            }
+            Surface::Diffuse(texture) => {
+                for p in hits {
+                    let i = p.ray as usize;
+                    let d = rays[i].direction;
+                    let direct = direct(p, p.hit.facing_normal(d), -d);
+                    let node_index = ray_nodes[i] as usize;
+                    if depth == 0 {
+                        s.first_irradiance[node_index] = direct.irradiance;
+                    }
+                    let albedo = texture.at(p.hit.uv);
+                    out.nodes[node_index] = Node::leaf(
+                        albedo * (direct.irradiance / std::f64::consts::PI) + direct.highlight,
+                    );
+                }
             }
             Surface::Mirror(reflectance) => {
-                let base = if highlight.is_some() {
-                    direct.highlight
-                } else {
-                    Rgb::BLACK
-                };
-                let reflected = if deeper {
-                    follow(reflect(d, normal))
-                } else {
-                    NONE
-                };
-                Node {
-                    radiance: base,
-                    weights: Weights::Mirror(reflectance),
-                    children: [reflected, NONE],
+                for p in hits {
+                    let i = p.ray as usize;
+                    let d = rays[i].direction;
+                    let normal = p.hit.facing_normal(d);
+                    let base = direct(p, normal, -d).highlight;
+                    let reflected = if deeper {
+                        out.follow(&p.hit, reflect(d, normal))
+                    } else {
+                        NONE
+                    };
+                    out.nodes[ray_nodes[i] as usize] = Node {
+                        radiance: base,
+                        weights: Weights::Mirror(reflectance),
+                        children: [reflected, NONE],
+                    };
                 }
             }
             Surface::Dielectric { ior } => {
-                // Entering (front face): η_i/η_t = 1/ior; leaving: ior.
-                let eta = if front { 1.0 / ior } else { ior };
-                let base = if highlight.is_some() && front {
-                    direct.highlight
-                } else {
-                    Rgb::BLACK
-                };
-                let mut children = [NONE; 2];
-                let mut fresnel = 0.0;
-                if deeper {
-                    fresnel = fresnel_dielectric(wo.dot(normal), eta);
-                    children[0] = follow(reflect(d, normal));
-                    if fresnel < 1.0 {
-                        if let Some((t, _)) = refract(d, normal, eta) {
-                            children[1] = follow(t);
+                for p in hits {
+                    let i = p.ray as usize;
+                    let d = rays[i].direction;
+                    let front = p.hit.is_front(d);
+                    let normal = p.hit.facing_normal(d);
+                    let wo = -d;
+                    // Entering (front face): η_i/η_t = 1/ior; leaving: ior.
+                    let eta = if front { 1.0 / ior } else { ior };
+                    let base = direct(p, normal, wo).highlight;
+                    let mut children = [NONE; 2];
+                    let mut fresnel = 0.0;
+                    if deeper {
+                        fresnel = fresnel_dielectric(wo.dot(normal), eta);
+                        children[0] = out.follow(&p.hit, reflect(d, normal));
+                        if fresnel < 1.0 {
+                            if let Some((t, _)) = refract(d, normal, eta) {
+                                children[1] = out.follow(&p.hit, t);
+                            }
                         }
                     }
-                }
-                Node {
-                    radiance: base,
-                    weights: Weights::Dielectric(fresnel),
-                    children,
+                    out.nodes[ray_nodes[i] as usize] = Node {
+                        radiance: base,
+                        weights: Weights::Dielectric(fresnel),
+                        children,
+                    };
                 }
             }
-        };
-        s.nodes[node_index] = node;
+        }
+    }
+}
+
+/// Where shading writes: the tile's nodes and the next generation.
+struct Shaded<'a> {
+    nodes: &'a mut Vec<Node>,
+    next_rays: &'a mut Vec<Ray>,
+    next_nodes: &'a mut Vec<u32>,
+}
+
+impl Shaded<'_> {
+    /// Spawns the ray leaving `hit` along `direction` into the next
+    /// generation; its node's index.
+    #[inline(always)]
+    fn follow(&mut self, hit: &Hit, direction: DVec3) -> u32 {
+        let child = self.nodes.len() as u32;
+        self.nodes.push(Node::leaf(Rgb::BLACK));
+        self.next_rays.push(hit.spawn_ray(direction));
+        self.next_nodes.push(child);
+        child
     }
 }
 
