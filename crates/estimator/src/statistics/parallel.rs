@@ -27,6 +27,7 @@ use super::timing::Timing;
 use lambert_sampling::sequence::SampleSequence;
 use rayon::prelude::*;
 use std::ops::Range;
+use std::sync::{Arc, Mutex};
 
 /// Chunks estimated in parallel before their results are folded in order.
 pub const BATCH_CHUNKS: u64 = 1024;
@@ -125,10 +126,7 @@ where
         }
         return Ok(total);
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| StatisticsError::ThreadPool(e.to_string()))?;
+    let pool = pool_of(threads)?;
     let mut total = T::default();
     pool.install(|| {
         let mut first = 0;
@@ -147,8 +145,30 @@ where
     Ok(total)
 }
 
+/// The process's pool of `threads` worker threads, built on first use and
+/// kept: a pool built per run cost its threads' start and, on every run,
+/// their per-thread scratch buffers' first-touch page faults (studies run
+/// thousands of estimates). Which thread runs a chunk never changes a bit
+/// (module docs), so sharing pools between runs is safe.
+fn pool_of(threads: usize) -> Result<Arc<rayon::ThreadPool>, StatisticsError> {
+    static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+    // A poisoned lock only means a panic elsewhere while it was held; the
+    // list is still whole (entries are pushed complete).
+    let mut pools = POOLS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, pool)) = pools.iter().find(|(n, _)| *n == threads) {
+        return Ok(Arc::clone(pool));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| StatisticsError::ThreadPool(e.to_string()))?;
+    let pool = Arc::new(pool);
+    pools.push((threads, Arc::clone(&pool)));
+    Ok(pool)
+}
+
 /// [`run_chunked`], timed: the estimate and the wall time of the whole run
-/// (thread-pool start-up included).
+/// (the first run on a thread count includes starting its pool, which later runs reuse).
 ///
 /// # Errors
 /// As [`run_chunked`].
