@@ -22,7 +22,10 @@
 //! rays and hit records, b per sample). Two pilot renders, at p and 4p
 //! samples per pixel, measure a and b for each strategy; the strategy then
 //! renders with spp = ⌊(T − a)/b⌋ (at least 2) for the budget T, and its
-//! measured time is reported so that the equality can be checked. A
+//! measured time is reported so that the equality can be checked; on a
+//! loaded machine the fit is loose (±30 %), so the comparison also gives
+//! the ratio of RMSE·√t ([`Comparison::time_normalized_ratio`]), the
+//! ratio at exactly equal time under MSE ∝ 1/t. A
 //! [`Budget::SamplesPerPixel`] budget skips the pilots (equal samples, not
 //! equal time; what tests use, since timing is not reproducible).
 
@@ -207,6 +210,20 @@ impl Comparison {
     pub fn rmse_ratio(&self, i: usize) -> Option<f64> {
         let base = self.runs.first()?.error.corrected_rmse;
         let other = self.runs.get(i)?.error.corrected_rmse;
+        (other > 0.0).then(|| base / other)
+    }
+}
+
+impl Comparison {
+    /// [`rmse_ratio`](Self::rmse_ratio) with each RMSE scaled to the same
+    /// time, RMSE·√t (t the measured seconds; MSE ∝ 1/t at a fixed cost
+    /// per sample): the ratio at exactly equal time, which corrects the
+    /// pilots' imperfect fit of spp to the budget on a loaded machine. Its
+    /// square is the efficiency ratio ε_i/ε_baseline.
+    pub fn time_normalized_ratio(&self, i: usize) -> Option<f64> {
+        let scaled = |r: &StrategyRun| r.error.corrected_rmse * r.rendered.stats.seconds.sqrt();
+        let base = scaled(self.runs.first()?);
+        let other = scaled(self.runs.get(i)?);
         (other > 0.0).then(|| base / other)
     }
 }

@@ -190,6 +190,13 @@ fn penumbra_scene_ratio_is_the_ratio_of_errors() {
     for (i, run) in result.runs.iter().enumerate() {
         assert!(run.rendered.image.is_finite());
         assert!(run.error.rmse.is_finite() && run.error.rmse >= run.error.corrected_rmse);
+        let scaled = |k: usize| {
+            let r = &result.runs[k];
+            r.error.corrected_rmse * r.rendered.stats.seconds.sqrt()
+        };
+        if let Some(r) = result.time_normalized_ratio(i) {
+            assert_eq!(r, scaled(0) / scaled(i));
+        }
         if let Some(r) = result.rmse_ratio(i) {
             assert_eq!(
                 r,

@@ -96,8 +96,10 @@ independent); then each strategy renders with the samples per pixel that fit --s
 pilot renders measure its time per sample), or with --spp when --seconds is not given. The
 table (or --json) gives per strategy its spp, measured seconds, RMSE over the pixels against
 the reference, the RMSE with the reference's own RMS standard error removed in quadrature,
-and the ratio baseline RMSE / strategy RMSE (> 1: the strategy has the smaller error; its
-square is the efficiency ratio). Images: FILE.reference.exr and FILE.<strategy>.exr.
+the ratio baseline RMSE / strategy RMSE (> 1: the strategy has the smaller error), and the
+same ratio of RMSE·√seconds, which holds at exactly equal time (the pilots' fit of spp to the
+budget is loose on a busy machine; its square is the efficiency ratio). Images:
+FILE.reference.exr and FILE.<strategy>.exr.
 
 Examples:
   lambert render whitted --out whitted.exr

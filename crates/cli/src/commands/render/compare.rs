@@ -92,8 +92,8 @@ fn write(image: &lambert_tracer::Image, out: &Path, tag: &str) -> Result<PathBuf
     Ok(exr)
 }
 
-fn ratio_text(result: &Comparison, i: usize) -> String {
-    match result.rmse_ratio(i) {
+fn ratio_text(ratio: Option<f64>) -> String {
+    match ratio {
         Some(r) => format!("{r:.3}"),
         None => "∞ (exact)".into(),
     }
@@ -127,20 +127,21 @@ fn print_table(
         mean
     );
     println!(
-        "| strategy | spp | seconds | RMSE (W/m²) | RMSE − reference | relative RMSE | RMSE ratio ({} / strategy) |",
+        "| strategy | spp | seconds | RMSE (W/m²) | RMSE − reference | relative RMSE | RMSE ratio ({0} / strategy) | at equal time, RMSE·√t ({0} / strategy) |",
         result.runs.first().map_or("", |r| r.strategy.name())
     );
-    println!("|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|");
     for (i, run) in result.runs.iter().enumerate() {
         println!(
-            "| {} | {} | {:.2} | {:.4e} | {:.4e} | {:.3e} | {} |",
+            "| {} | {} | {:.2} | {:.4e} | {:.4e} | {:.3e} | {} | {} |",
             run.strategy,
             run.spp,
             run.rendered.stats.seconds,
             run.error.rmse,
             run.error.corrected_rmse,
             run.error.corrected_rmse / mean,
-            ratio_text(result, i)
+            ratio_text(result.rmse_ratio(i)),
+            ratio_text(result.time_normalized_ratio(i))
         );
     }
     for (what, path) in written {
@@ -171,6 +172,7 @@ fn as_json(
                 "rmse_corrected": run.error.corrected_rmse,
                 "relative_rmse": run.error.corrected_rmse / run.error.mean_reference,
                 "rmse_ratio": result.rmse_ratio(i),
+                "rmse_ratio_time_normalized": result.time_normalized_ratio(i),
                 "exr": path.display().to_string(),
             })
         })
