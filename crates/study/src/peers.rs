@@ -16,10 +16,14 @@
 //! every sequence of the study, reaches 0.1 % relative RMSE soonest.
 //!
 //! **Exact estimators.** A zero-variance estimator (every replicate's
-//! error 0: projected sampling of an unoccluded uniform light, the control
-//! variate without occluders) reaches any error with one sample; its time
-//! to 0.1 % is then the time of one sample (ns/sample), not 0, and its
-//! efficiency 1/(V·T) is unbounded. The table says "exact" there, gives
+//! error 0, or a relative RMSE at the rounding level, ≤ 1e-12: projected
+//! sampling of an unoccluded uniform light, the control variate without
+//! occluders) reaches any error with one sample; its time to 0.1 % is then
+//! the time of one sample (ns/sample), not 0, and its efficiency 1/(V·T)
+//! is unbounded (a V of rounding errors would make it ~1e25 times the
+//! baseline's, a meaningless figure). A group already within 0.1 % at
+//! its largest N gets N·(e/0.001)² samples (at least 1) by the central
+//! limit theorem, when that is sooner than the summary's own column. The table says "exact" there, gives
 //! the speed-up as the baseline's time over one sample's, and leaves the
 //! ε ratio as ∞.
 
@@ -28,7 +32,7 @@ use std::fmt::Write;
 use lambert_estimator::strategy::{Heuristic, Strategy};
 
 use crate::fit::LogLogFit;
-use crate::summary::GroupSummary;
+use crate::summary::{GroupSummary, TARGET_REL_RMSE};
 
 /// The strategies a pbrt-v4/Mitsuba 3 renderer offers (module docs).
 pub const PEER_STRATEGIES: [Strategy; 4] = [
@@ -37,6 +41,17 @@ pub const PEER_STRATEGIES: [Strategy; 4] = [
     Strategy::Mis(Heuristic::Power),
     Strategy::Mis(Heuristic::Balance),
 ];
+
+/// The relative RMSE at or below which a group counts as exact: the
+/// rounding level of its sums (the zero-variance tests' bound, 1e-12),
+/// where efficiency 1/(V·T) measures rounding, not sampling.
+pub const EXACT_REL_RMSE: f64 = 1e-12;
+
+/// Whether a group is exact: every replicate's error 0 (the fit says so),
+/// or its relative RMSE at the largest N at most [`EXACT_REL_RMSE`].
+fn is_exact(g: &GroupSummary) -> bool {
+    g.fit == Some(LogLogFit::Exact) || g.final_rel_rmse.is_some_and(|e| e <= EXACT_REL_RMSE)
+}
 
 /// lambert's own strategies, compared against the peers' best.
 pub const OWN_STRATEGIES: [Strategy; 2] = [Strategy::Projected, Strategy::ControlVariate];
@@ -55,15 +70,31 @@ impl TimeToTarget {
     /// The group's time to 0.1 %, `None` where the summary has none (no
     /// closed form, no decreasing fit).
     pub fn of(g: &GroupSummary) -> Option<Self> {
-        let exact = g.fit == Some(LogLogFit::Exact);
-        match g.time_to_target {
-            _ if exact => Some(TimeToTarget {
-                seconds: g.ns_per_sample * 1e-9,
-                exact,
-            }),
-            Some(t) => Some(TimeToTarget { seconds: t, exact }),
-            None => None,
+        let one_sample = g.ns_per_sample * 1e-9;
+        if is_exact(g) {
+            return Some(TimeToTarget {
+                seconds: one_sample,
+                exact: true,
+            });
         }
+        // Within the target at the largest N: N* = N·(e/target)² samples
+        // by the CLT (conservative where the error is a rounding floor that
+        // does not grow as N falls); the summary's own column bounds such
+        // groups by their smallest N instead.
+        let from_last = g.final_rel_rmse.filter(|&e| e <= TARGET_REL_RMSE).map(|e| {
+            (g.n_max as f64 * (e / TARGET_REL_RMSE).powi(2))
+                .ceil()
+                .max(1.0)
+                * one_sample
+        });
+        let seconds = match (g.time_to_target, from_last) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }?;
+        Some(TimeToTarget {
+            seconds,
+            exact: false,
+        })
     }
 }
 
@@ -118,7 +149,10 @@ fn best<'a>(
                 eb.total_cmp(&ea)
             })
         })
-        .map(|(g, t)| (format!("{} × {}", g.strategy, g.sequence), t, g.efficiency))
+        .map(|(g, t)| {
+            let efficiency = if t.exact { None } else { g.efficiency };
+            (format!("{} × {}", g.strategy, g.sequence), t, efficiency)
+        })
 }
 
 /// The comparison's rows, one per scene with a closed form, in the order
@@ -344,6 +378,46 @@ mod tests {
             md.contains("| b | light × sobol | 1.00 s | — | — | — | — | — | — |"),
             "{md}"
         );
+    }
+
+    /// A relative RMSE at the rounding level counts as exact (one sample,
+    /// ε ratio ∞, not 1/(V·T) of rounding errors); one within the target
+    /// at N = 2^14 with e = 2.5e-4 needs ⌈2^14·(0.25)²⌉ = 1024 samples.
+    #[test]
+    fn rounding_level_errors_are_exact_and_small_errors_extrapolate() {
+        let mut near = group(
+            "a",
+            Strategy::Projected,
+            SequenceKind::Independent,
+            Some(1e-3),
+            Some(1e25),
+            false,
+        );
+        near.final_rel_rmse = Some(3e-16);
+        assert_eq!(
+            TimeToTarget::of(&near),
+            Some(TimeToTarget {
+                seconds: 50.0 * 1e-9,
+                exact: true
+            })
+        );
+        let mut small = near.clone();
+        small.final_rel_rmse = Some(2.5e-4);
+        let t = TimeToTarget::of(&small).unwrap();
+        assert!(!t.exact);
+        assert_eq!(t.seconds, 1024.0 * (50.0 * 1e-9));
+        let groups = vec![
+            group(
+                "a",
+                Strategy::Light,
+                SequenceKind::Sobol,
+                Some(1e-3),
+                Some(2.0),
+                false,
+            ),
+            near,
+        ];
+        assert_eq!(peer_rows(&groups)[0].efficiency_ratio(0), Some(None));
     }
 
     /// Without the compared strategies there is no section.
