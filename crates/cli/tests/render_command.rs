@@ -270,7 +270,7 @@ fn bad_input_exits_2_naming_the_field_and_writes_nothing() {
     );
     fails(
         &dir,
-        &with(&["--compare", "light", "--seconds", "-2"]),
+        &with(&["--compare", "light", "--seconds=-2"]),
         "--seconds: must be a positive",
     );
     fails(
