@@ -59,8 +59,9 @@ impl TechniqueFallback {
             return None;
         };
         // In the disk's plane the disk is seen edge-on: nothing to sample.
-        // (Not Ω > 0: `Disk::solid_angle_from` is NaN for a disk far wider
-        // than its height, 1e300 at 1e-20, exactly where a fallback is due.)
+        // (The height decides, not Ω > 0: the Ω of a far, tiny disk that is
+        // still seen can underflow to 0, one of the cases that need the
+        // fallback.)
         if d.disk.height_and_offset(receiver.point).0 == 0.0 {
             return None;
         }
