@@ -125,6 +125,16 @@ pub struct PixelError {
 /// `reference`'s, with the reference's RMS standard error `reference_rms`
 /// removed in quadrature (module docs).
 ///
+/// ```
+/// use lambert_tracer::compare::pixel_error;
+/// use lambert_tracer::Image;
+/// let layer = |e: Vec<f32>| Image::from_layers(2, 1, vec![[0.0; 3]; 2], e, None).unwrap();
+/// // Differences 0 and 2: RMSE √(4/2) = √2; a reference error of 1 leaves 1.
+/// let e = pixel_error(&layer(vec![1.0, 4.0]), &layer(vec![1.0, 2.0]), 1.0)?;
+/// assert_eq!((e.rmse, e.corrected_rmse), (2f64.sqrt(), 1.0));
+/// # Ok::<(), lambert_tracer::TracerError>(())
+/// ```
+///
 /// # Errors
 /// Images of different sizes (`reference`).
 pub fn pixel_error(
