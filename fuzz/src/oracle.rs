@@ -434,8 +434,18 @@ fn judge_estimate(call: &Call, map: &Map<String, Value>, context: &Context) -> R
             "hits",
             "interval",
             "warning",
+            "fallback",
         ],
     )?;
+    if !matches!(map.get("fallback"), Some(Value::String(_) | Value::Null)) {
+        return Err(Failure {
+            class: Class::BadJson,
+            detail: format!(
+                "`fallback` = {:?} is neither text nor null",
+                map.get("fallback")
+            ),
+        });
+    }
     let mean = number(map, "mean")?;
     let se = number(map, "std_error")?;
     let interval = map.get("interval").and_then(Value::as_str);
@@ -679,7 +689,7 @@ mod tests {
         let call = Call::from_template("estimate {scene} --json --samples 64").unwrap();
         let line = |mean: &str, se: &str, analytic: &str, rel: &str, z: &str| {
             format!(
-                "{{\"mean\":{mean},\"std_error\":{se},\"ci99\":[0.5,1.5],\"samples\":64,\"seconds\":0.1,\"ns_per_sample\":3.0,\"analytic\":{analytic},\"rel_error\":{rel},\"z\":{z},\"hits\":64,\"interval\":\"clt\",\"warning\":null}}\n"
+                "{{\"mean\":{mean},\"std_error\":{se},\"ci99\":[0.5,1.5],\"samples\":64,\"seconds\":0.1,\"ns_per_sample\":3.0,\"analytic\":{analytic},\"rel_error\":{rel},\"z\":{z},\"hits\":64,\"interval\":\"clt\",\"warning\":null,\"fallback\":null}}\n"
             )
         };
         let ctx = Context {

@@ -108,6 +108,7 @@ fn json_has_exactly_the_documented_keys() {
         [
             "analytic",
             "ci99",
+            "fallback",
             "hits",
             "interval",
             "mean",
@@ -125,6 +126,7 @@ fn json_has_exactly_the_documented_keys() {
     assert_eq!(v["hits"].as_u64(), Some(4096));
     assert_eq!(v["interval"].as_str(), Some("clt"));
     assert!(v["warning"].is_null(), "{v}");
+    assert!(v["fallback"].is_null(), "{v}");
     let mean = v["mean"].as_f64().unwrap();
     let se = v["std_error"].as_f64().unwrap();
     let ci = v["ci99"].as_array().expect("ci99 is an array");

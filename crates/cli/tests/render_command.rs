@@ -245,6 +245,105 @@ fn bad_input_exits_2_naming_the_field_and_writes_nothing() {
     fails(&dir, &["cornell", "--strategy", "best"], "--strategy");
     fails(&dir, &["no-such-scene"], "neither a built-in scene");
     fails(&dir, &["whitted", "--analytic"], "--analytic");
+    // The equal-time comparison (--compare).
+    let irr = [
+        "cornell",
+        "--mode",
+        "irradiance",
+        "--width",
+        "4",
+        "--height",
+        "4",
+    ];
+    let with = |extra: &[&'static str]| -> Vec<&'static str> {
+        irr.iter().chain(extra).copied().collect()
+    };
+    fails(
+        &dir,
+        &with(&["--compare", "light,best"]),
+        "--compare: unknown strategy \"best\"",
+    );
+    fails(
+        &dir,
+        &with(&["--compare", "light", "--seconds", "0"]),
+        "--seconds: must be a positive",
+    );
+    fails(
+        &dir,
+        &with(&["--compare", "light", "--seconds=-2"]),
+        "--seconds: must be a positive",
+    );
+    fails(
+        &dir,
+        &with(&["--seconds", "2"]),
+        "--seconds: only with --compare",
+    );
+    fails(
+        &dir,
+        &with(&["--compare", "light", "--reference-spp", "1"]),
+        "--reference-spp",
+    );
+    fails(
+        &dir,
+        &with(&["--compare", "light", "--reference-strategy", "best"]),
+        "--reference-strategy",
+    );
+    fails(
+        &dir,
+        &["cornell", "--mode", "whitted", "--compare", "light"],
+        "--compare: compares irradiance strategies, so it needs --mode irradiance, got whitted",
+    );
+}
+
+/// `--compare` at equal samples on a tiny image: the table's rows, the
+/// JSON's keys, and an EXR per strategy and one for the reference.
+#[test]
+fn compare_writes_every_image_and_a_ratio() {
+    let dir = TempDir::new("compare");
+    let out = dir.file("cmp.exr");
+    let o = lambert(&[
+        "render",
+        "cornell",
+        "--mode",
+        "irradiance",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--compare",
+        "light,control-variate",
+        "--spp",
+        "4",
+        "--reference-spp",
+        "16",
+        "--json",
+        "--out",
+        path(&out),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["budget"]["spp"].as_u64(), Some(4));
+    assert_eq!(v["reference"]["spp"].as_u64(), Some(16));
+    let runs = v["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 2);
+    assert_eq!(runs[0]["rmse_ratio"].as_f64(), Some(1.0));
+    assert!(runs[1]["rmse"].as_f64().unwrap() > 0.0);
+    for f in [
+        "cmp.reference.exr",
+        "cmp.light.exr",
+        "cmp.control-variate.exr",
+    ] {
+        assert!(
+            dir.files().contains(&f.to_owned()),
+            "{f}: {:?}",
+            dir.files()
+        );
+    }
 }
 
 #[test]

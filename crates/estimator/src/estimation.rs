@@ -55,7 +55,7 @@ use crate::interval::{
     honest_interval, ErrorSource, EstimateWarning, IntervalKind, PartTally, SampleSummary, LEVEL,
 };
 use crate::statistics::{run_chunked_merge, Estimate, Mergeable, StatisticsError};
-use crate::strategy::{PartHits, PreparedEmitter, Strategy};
+use crate::strategy::{PartHits, PreparedEmitter, Strategy, TechniqueFallback};
 use crate::strength_scale::{scaled_scene, strength_exponent, unscaled_error, unscaled_report};
 use lambert_light::scene::Scene;
 
@@ -151,6 +151,11 @@ pub struct EstimateReport {
     /// Why `ci99` is not the plain CLT interval (few or no hits, few
     /// misses, a heavy tail); `None` when it is.
     pub warning: Option<EstimateWarning>,
+    /// The first emitter (its index in the scene's list) whose requested
+    /// technique could not be used and was replaced
+    /// ([`TechniqueFallback`]), with the replacement; `None` when every
+    /// emitter used the technique its strategy resolves to.
+    pub fallback: Option<(usize, TechniqueFallback)>,
     /// Samples whose value was not 0 (of the sampled lights; delta lights
     /// are exact and not sampled).
     pub hits: u64,
@@ -537,6 +542,10 @@ pub fn estimate_with_isa(
         level,
         interval: honest.kind,
         warning: honest.warning,
+        fallback: prepared
+            .iter()
+            .zip((0..scene.emitters.len()).filter(|&i| !scene.emitters[i].is_delta()))
+            .find_map(|(p, i)| p.fallback.map(|f| (i, f))),
         hits: sampled.nonzero(),
         samples: config.samples,
         seconds,

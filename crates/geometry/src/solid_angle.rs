@@ -119,11 +119,26 @@ macro_rules! solid_angle_impl {
         /// elliptic integrals (Paxton, Rev. Sci. Instrum. 30, 1959)
         /// computes a small Ω as 2π minus a number close to 2π and is not
         /// used.
+        ///
+        /// Ω depends only on the ratios of h, s and R, so the three are
+        /// first scaled by the power of two 2^−k that brings the largest
+        /// near 1: exact, so ordinary inputs give the same bits, and the
+        /// squares inside can neither overflow (a disk 1e300 across, whose
+        /// Ω was NaN) nor underflow.
         pub fn disk_solid_angle_hs(h: Real, s: Real, radius: Real) -> Real {
-            let r = radius;
-            if !(h > 0.0) || !(r > 0.0) {
+            if !(h > 0.0) || !(radius > 0.0) {
                 return 0.0;
             }
+            let largest = h.max(s).max(radius);
+            let (h, s, r) = if largest.is_finite() {
+                let k = largest.log2().floor() as i32;
+                // 2^−k in two factors, each a normal number even at the
+                // ends of the range (|k| up to 1074 in f64).
+                let (a, b) = ((2.0 as Real).powi(-k / 2), (2.0 as Real).powi(-k + k / 2));
+                (h * a * b, s * a * b, radius * a * b)
+            } else {
+                (h, s, radius)
+            };
             if s < r {
                 let f = |phi: Real| {
                     let (sp, cp) = phi.sin_cos();
@@ -187,6 +202,31 @@ mod tests {
         assert!((tiny / (PI * 1e-16) - 1.0).abs() < 1e-15);
         assert!((cap_solid_angle_from_sin2(1.0) - 2.0 * PI).abs() < 1e-15);
         assert!((cap_solid_angle_from_sin2(1e-20) / (PI * 1e-20) - 1.0).abs() < 1e-15);
+    }
+
+    /// Disks whose squared lengths overflow or underflow: Ω is scale
+    /// invariant, so a disk 2^600 times larger (or smaller), seen from 2^600
+    /// times farther (nearer), has the same Ω to the bit (scaling by a
+    /// power of two is exact); a disk 1e300 across 1e-20 above the receiver
+    /// subtends the hemisphere, 2π(1 − h/√(h² + R²)) = 2π to rounding
+    /// (it was NaN: R² overflowed).
+    #[test]
+    fn disks_at_the_ends_of_the_range() {
+        for (h, s, r) in [(0.7, 0.2, 1.3), (0.4, 3.0, 1.0), (1e-3, 0.0, 1.0)] {
+            let omega = disk_solid_angle_hs(h, s, r);
+            for f in [2f64.powi(600), 2f64.powi(-600)] {
+                assert_eq!(
+                    disk_solid_angle_hs(h * f, s * f, r * f),
+                    omega,
+                    "{h} {s} {r} × {f}"
+                );
+            }
+        }
+        assert!((disk_solid_angle_hs(1e-20, 0.0, 1e300) - 2.0 * PI).abs() <= 4.0 * f64::EPSILON);
+        assert!((disk_solid_angle_hs(1e-20, 1e299, 1e300) - 2.0 * PI).abs() <= 4.0 * f64::EPSILON);
+        // f32: a disk 1e30 across (R² overflows f32).
+        let w = super::f32::disk_solid_angle_hs(1e-3, 0.0, 1e30);
+        assert!((w - 2.0 * std::f32::consts::PI).abs() <= 4.0 * f32::EPSILON);
     }
 
     #[test]

@@ -160,7 +160,7 @@ macro_rules! disk_light_impl {
                     return Err(edge_on);
                 }
                 let lateral = v - n * height;
-                let rho = lateral.length();
+                let rho = overflow_free_length(lateral);
                 let e_rho = if rho > 0.0 {
                     lateral / rho
                 } else {
@@ -467,6 +467,25 @@ macro_rules! disk_light_impl {
             }
         }
 
+        /// |v| without overflow or underflow of its squares: glam's
+        /// `length` (√(v·v)) where v·v is a normal number, else the length
+        /// of v over its largest component, scaled back. A receiver ~1e200
+        /// from a disk (f64; ~1e20 in f32) has a finite distance whose
+        /// square overflows; ordinary distances keep glam's bits.
+        #[inline]
+        fn overflow_free_length(v: V3) -> Real {
+            let l = v.length();
+            if l.is_finite() && l >= Real::MIN_POSITIVE.sqrt() {
+                return l;
+            }
+            let m = v.abs().max_element();
+            if m > 0.0 && m.is_finite() {
+                (v / m).length() * m
+            } else {
+                l
+            }
+        }
+
         /// Solid-angle sampling of a disk light from any shading point:
         /// built once per light, a [`DiskSolidAngle`] at each point
         /// (uniform over the spherical ellipse the disk subtends; Guillén et
@@ -594,6 +613,66 @@ mod tests {
                     "τ = {tau}: {carlson} vs {quadrature} ({rel:e})"
                 );
             }
+        }
+    }
+
+    /// A receiver so far from a disk that squared distances overflow
+    /// (fuzz corpus `giant-disk-no-light-sampler`: a disk of radius 2e199
+    /// about 1e200 away) is sampled as the same geometry at unit scale:
+    /// solid angles are invariant under scaling about the receiver, and
+    /// scaling by 2^k is exact, so the sampler at 2^660 (f64) and 2^66 (f32)
+    /// must give the solid angle and directions of the sampler at scale 1,
+    /// up to the rounding of the one length formed differently (|ρ| from
+    /// the scaled vector: a few ulps, 8ε allowed). Before the fix the
+    /// sampler refused these geometries ("distance overflows").
+    #[test]
+    fn far_geometry_whose_squares_overflow_is_sampled_as_at_unit_scale() {
+        use glam::{Vec2, Vec3};
+        let (c, n, r) = (
+            DVec3::new(-7.4, -6.6, 0.85),
+            DVec3::new(0.2, -0.1, -1.0),
+            2.17,
+        );
+        let near = super::f64::DiskSolidAngle::new(DVec3::ZERO, &Disk::new(c, n, r).unwrap());
+        let s = 2f64.powi(660);
+        let far =
+            super::f64::DiskSolidAngle::new(DVec3::ZERO, &Disk::new(c * s, n, r * s).unwrap());
+        let (near, far) = (near.unwrap(), far.expect("built although |c|² overflows"));
+        let eps = 8.0 * f64::EPSILON;
+        assert!((far.solid_angle() / near.solid_angle() - 1.0).abs() <= eps);
+        for u in [
+            DVec2::new(0.1, 0.2),
+            DVec2::new(0.7, 0.9),
+            DVec2::new(0.5, 0.0),
+        ] {
+            let (a, b) = (near.sample(u), far.sample(u));
+            assert!(
+                (a.direction - b.direction).abs().max_element() <= eps,
+                "{u}"
+            );
+            assert!(b.point.is_finite() && b.distance.is_finite(), "{u}");
+        }
+        let c32 = c.as_vec3();
+        let (n32, r32) = (n.as_vec3(), r as f32);
+        let near = super::f32::DiskSolidAngle::new(
+            Vec3::ZERO,
+            &lambert_geometry::f32::Disk::new(c32, n32, r32).unwrap(),
+        )
+        .unwrap();
+        let s = 2f32.powi(66);
+        let far = super::f32::DiskSolidAngle::new(
+            Vec3::ZERO,
+            &lambert_geometry::f32::Disk::new(c32 * s, n32, r32 * s).unwrap(),
+        )
+        .expect("built although |c|² overflows f32");
+        let eps = 8.0 * f32::EPSILON;
+        assert!((far.solid_angle() / near.solid_angle() - 1.0).abs() <= eps);
+        for u in [Vec2::new(0.1, 0.2), Vec2::new(0.7, 0.9)] {
+            let (a, b) = (near.sample(u), far.sample(u));
+            assert!(
+                (a.direction - b.direction).abs().max_element() <= eps,
+                "{u}"
+            );
         }
     }
 

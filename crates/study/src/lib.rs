@@ -18,6 +18,7 @@
 pub mod aggregate;
 pub mod config;
 pub mod fit;
+pub mod peers;
 pub mod plan;
 pub mod plot;
 pub mod results;

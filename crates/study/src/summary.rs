@@ -280,6 +280,7 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
          the rows), with the ratio spread/σ: a ratio far above 1 is the mark of a heavy tail \
          or of rare events, where the sample variance cannot be trusted.\n"
     );
+    s.push_str(&crate::peers::peers_markdown(&groups));
     let mut scenes: Vec<&str> = Vec::new();
     for g in &groups {
         if !scenes.contains(&g.scene.as_str()) {

@@ -46,6 +46,7 @@ pub mod builtin;
 pub mod bvh;
 pub mod camera;
 pub mod color;
+pub mod compare;
 pub mod error;
 pub mod image;
 pub mod material;

@@ -10,7 +10,11 @@
 //!   `bounded` (from the bound on a sample's value; valid with any number
 //!   of hits); see `lambert_estimator::interval`;
 //! - `warning`: `null`, or why the CLT interval would not hold (no or few
-//!   hits, few misses, a heavy tail).
+//!   hits, few misses, a heavy tail);
+//! - `fallback`: `null`, or which emitter did not use the technique its
+//!   strategy asked for and what replaced it (a disk whose solid-angle
+//!   sampler cannot be built from the receiver is cosine-sampled:
+//!   `lambert_estimator::strategy::TechniqueFallback`).
 //!
 //! Every number is finite; `ci99`'s upper end is f64::MAX when the bound on
 //! a sample's value overflows (area sampling ~1e-150 m from a light).
@@ -109,6 +113,7 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
             "hits": report.hits,
             "interval": report.interval.name(),
             "warning": report.warning.map(|w| w.to_string()),
+            "fallback": report.fallback.map(|(i, f)| format!("emitters[{i}]: {f}")),
         });
         println!("{value}");
     } else {
@@ -126,6 +131,9 @@ pub fn run(options: &EstimateOptions) -> Result<(), String> {
         );
         if let Some(w) = report.warning {
             println!("warning ({} interval): {w}", report.interval);
+        }
+        if let Some((i, f)) = report.fallback {
+            println!("fallback: emitters[{i}]: {f}");
         }
         match analytic {
             Some(a) => println!(

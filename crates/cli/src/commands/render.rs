@@ -4,6 +4,8 @@
 
 use std::path::PathBuf;
 
+mod compare;
+
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lambert_estimator::point::PointConfig;
@@ -61,6 +63,23 @@ pub struct RenderOptions {
     /// Worker threads (default: every core).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Irradiance mode: compare these strategies (comma-separated, the
+    /// first is the baseline of the ratios) against a reference image,
+    /// per-pixel RMSE; writes FILE.<strategy>.exr for each and
+    /// FILE.reference.exr (see the notes below).
+    #[arg(long, value_delimiter = ',')]
+    pub compare: Option<Vec<String>>,
+    /// With --compare: each strategy renders with the samples per pixel
+    /// that fit this many seconds (calibrated by two pilot renders); without
+    /// it, every strategy uses --spp.
+    #[arg(long)]
+    pub seconds: Option<f64>,
+    /// With --compare: the reference's samples per pixel.
+    #[arg(long, default_value_t = 1024)]
+    pub reference_spp: u64,
+    /// With --compare: the reference's strategy.
+    #[arg(long, default_value = "control-variate")]
+    pub reference_strategy: String,
 }
 
 const AFTER_HELP: &str = "\
@@ -71,14 +90,38 @@ leaves no partial image. Bad input (an unknown field, a NaN, a camera inside a s
 missing or non-manifold mesh, a zero-size image) exits with code 2 and a message naming the
 field.
 
+Equal-time comparison (--compare A,B,…, irradiance mode): a reference image is rendered with
+--reference-strategy at --reference-spp samples per pixel (another seed, so its error is
+independent); then each strategy renders with the samples per pixel that fit --seconds (two
+pilot renders measure its time per sample), or with --spp when --seconds is not given. The
+table (or --json) gives per strategy its spp, measured seconds, RMSE over the pixels against
+the reference, the RMSE with the reference's own RMS standard error removed in quadrature,
+the ratio baseline RMSE / strategy RMSE (> 1: the strategy has the smaller error), and the
+same ratio of RMSE·√seconds, which holds at exactly equal time (the pilots' fit of spp to the
+budget is loose on a busy machine; its square is the efficiency ratio). Images:
+FILE.reference.exr and FILE.<strategy>.exr.
+
 Examples:
   lambert render whitted --out whitted.exr
+  lambert render cornell --mode irradiance --compare light,control-variate --seconds 5 \
+      --width 128 --height 128 --out cmp.exr
   lambert render cornell --mode irradiance --spp 64 --strategy light --out cornell.exr --json
   lambert render scene.toml --mode raycast --width 320 --height 240 --out scene.exr";
 
 /// Runs the command.
 pub fn run(options: &RenderOptions) -> Result<(), String> {
     let mode: Mode = options.mode.parse().map_err(|e| format!("--mode: {e}"))?;
+    if options.compare.is_none() && options.seconds.is_some() {
+        return Err("--seconds: only with --compare (the time budget of each strategy)".into());
+    }
+    if options.compare.is_some() && mode != Mode::Irradiance {
+        return Err(format!(
+            "--compare: compares irradiance strategies, so it needs --mode irradiance, got {mode}"
+        ));
+    }
+    if options.compare.is_some() && options.analytic {
+        return Err("--analytic: not with --compare (the reference is an estimate)".into());
+    }
     let (strategy, sequence) =
         crate::parse::strategy_and_sequence(&options.strategy, &options.sequence)?;
     if options.analytic && mode != Mode::Irradiance {
@@ -122,6 +165,9 @@ pub fn run(options: &RenderOptions) -> Result<(), String> {
         analytic: options.analytic,
         ..RenderConfig::default()
     };
+    if let Some(names) = &options.compare {
+        return compare::run(options, names, &scene, &config, threads);
+    }
     let bar = ProgressBar::new(0);
     bar.set_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} tiles, {eta}")

@@ -55,6 +55,7 @@ mod control_variate;
 mod emitter_area;
 mod emitter_light;
 mod emitter_projected;
+mod fallback;
 mod occluded;
 mod prepared;
 pub mod value_bound;
@@ -63,6 +64,7 @@ pub use control_variate::ControlVariate;
 pub use emitter_area::EmitterArea;
 pub use emitter_light::{EmitterLight, LightDirection};
 pub use emitter_projected::EmitterProjected;
+pub use fallback::TechniqueFallback;
 pub use occluded::{delta_irradiance_visible, OccludedEmitter};
 pub use prepared::{PartHits, PreparedEmitter};
 pub use value_bound::{PartBound, PartShape};
@@ -242,6 +244,20 @@ pub enum Technique {
 }
 
 impl Technique {
+    /// The name of the strategy that uses this technique on every emitter
+    /// (as the command line names it).
+    pub fn name(self) -> &'static str {
+        match self {
+            Technique::UniformHemisphere => Strategy::UniformHemisphere.name(),
+            Technique::CosineHemisphere => Strategy::CosineHemisphere.name(),
+            Technique::Light => Strategy::Light.name(),
+            Technique::Area => Strategy::Area.name(),
+            Technique::Mis(h) => Strategy::Mis(h).name(),
+            Technique::Projected => Strategy::Projected.name(),
+            Technique::ControlVariate => Strategy::ControlVariate.name(),
+        }
+    }
+
     /// How many 2-D sample dimensions one evaluation consumes.
     pub fn dimensions(self) -> usize {
         match self {

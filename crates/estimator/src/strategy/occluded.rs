@@ -11,7 +11,10 @@ use lambert_sampling::f64::{
 };
 use lambert_sampling::sequence::SampleSequence;
 
-use super::{ControlVariate, EmitterArea, EmitterLight, EmitterProjected, Strategy, Technique};
+use super::{
+    ControlVariate, EmitterArea, EmitterLight, EmitterProjected, Strategy, Technique,
+    TechniqueFallback,
+};
 
 /// One emitter prepared at one receiver for estimates of
 /// E = ∫ L(ω) V(ω) max(cos θ, 0) dω, where V(ω) ∈ {0, 1} says whether the
@@ -34,8 +37,11 @@ use super::{ControlVariate, EmitterArea, EmitterLight, EmitterProjected, Strateg
 pub struct OccludedEmitter<'a> {
     /// The emitter.
     pub emitter: &'a Emitter,
-    /// The technique used for it ([`Strategy::resolve`]).
+    /// The technique used for it ([`Strategy::resolve`], or the fallback).
     pub technique: Technique,
+    /// The technique the strategy asked for, where its sampler could not
+    /// be built and `technique` replaces it ([`TechniqueFallback`]).
+    pub fallback: Option<TechniqueFallback>,
     light: EmitterLight,
     area: EmitterArea,
     projected: EmitterProjected,
@@ -46,12 +52,25 @@ impl<'a> OccludedEmitter<'a> {
     /// Prepares `emitter` (not a delta light: see [`delta_irradiance_visible`])
     /// at `receiver` for `strategy`, resolved for this emitter.
     pub fn new(emitter: &'a Emitter, receiver: &Receiver, strategy: Strategy) -> Self {
-        let technique = strategy.resolve(emitter, receiver);
-        let (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
+        let mut technique = strategy.resolve(emitter, receiver);
+        let light = EmitterLight::new(emitter, receiver);
+        let (mut projected, mut control) =
+            ControlVariate::samplers_for(technique, emitter, receiver);
+        // Light sampling and the control variate's residual without a
+        // projected sampler (disks) draw from the light sampler.
+        let draws_light = technique == Technique::Light
+            || (technique == Technique::ControlVariate
+                && matches!(projected, EmitterProjected::None));
+        let fallback = TechniqueFallback::check(technique, emitter, receiver, &light, draws_light);
+        if let Some(f) = fallback {
+            technique = f.used;
+            (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
+        }
         OccludedEmitter {
             emitter,
             technique,
-            light: EmitterLight::new(emitter, receiver),
+            fallback,
+            light,
             area: EmitterArea::new(emitter, receiver),
             projected,
             control,

@@ -13,6 +13,7 @@ use lambert_sampling::sequence::SampleSequence;
 
 use super::{
     ControlVariate, EmitterArea, EmitterLight, EmitterProjected, PartBound, Strategy, Technique,
+    TechniqueFallback,
 };
 
 /// One emitter prepared for estimation at one receiver: its technique, its
@@ -24,6 +25,9 @@ pub struct PreparedEmitter {
     pub emitter: Emitter,
     /// The technique used for it.
     pub technique: Technique,
+    /// The technique the strategy asked for, where its sampler could not
+    /// be built and `technique` replaces it ([`TechniqueFallback`]).
+    pub fallback: Option<TechniqueFallback>,
     pub(super) light: EmitterLight,
     pub(super) area: EmitterArea,
     projected: EmitterProjected,
@@ -39,10 +43,23 @@ impl PreparedEmitter {
     /// Prepares `emitter` at `receiver` for `strategy` (resolved for this
     /// emitter).
     pub fn new(emitter: &Emitter, receiver: &Receiver, strategy: Strategy) -> Self {
-        let technique = strategy.resolve(emitter, receiver);
+        let mut technique = strategy.resolve(emitter, receiver);
         let light = EmitterLight::new(emitter, receiver);
         let area = EmitterArea::new(emitter, receiver);
-        let (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
+        let (mut projected, mut control) =
+            ControlVariate::samplers_for(technique, emitter, receiver);
+        // Where the directions come from the light sampler: light sampling,
+        // and the control variate without a closed form or projected
+        // sampler (evaluate_u).
+        let draws_light = technique == Technique::Light
+            || (technique == Technique::ControlVariate
+                && control.is_none()
+                && matches!(projected, EmitterProjected::None));
+        let fallback = TechniqueFallback::check(technique, emitter, receiver, &light, draws_light);
+        if let Some(f) = fallback {
+            technique = f.used;
+            (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
+        }
         let [first, second] = PartBound::of(
             technique,
             emitter,
@@ -61,6 +78,7 @@ impl PreparedEmitter {
         PreparedEmitter {
             emitter: emitter.clone(),
             technique,
+            fallback,
             light,
             area,
             projected,
