@@ -51,12 +51,14 @@
 //! per-emitter estimates: unbiased, since each term is.
 
 mod batch;
+mod batch_f32;
 mod control_variate;
 mod emitter_area;
 mod emitter_light;
 mod emitter_projected;
 mod occluded;
 mod prepared;
+mod prepared_f32;
 pub mod value_bound;
 
 pub use control_variate::ControlVariate;
@@ -65,6 +67,7 @@ pub use emitter_light::{EmitterLight, LightDirection};
 pub use emitter_projected::EmitterProjected;
 pub use occluded::{delta_irradiance_visible, OccludedEmitter};
 pub use prepared::{PartHits, PreparedEmitter};
+pub use prepared_f32::{F32Fallback, FallbackReason, PreparedEmitterF32, F32_MAX_RELATIVE_ERROR};
 pub use value_bound::{PartBound, PartShape};
 
 use std::fmt;

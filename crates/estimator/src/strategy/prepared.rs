@@ -26,8 +26,8 @@ pub struct PreparedEmitter {
     pub technique: Technique,
     pub(super) light: EmitterLight,
     pub(super) area: EmitterArea,
-    projected: EmitterProjected,
-    control: Option<ControlVariate>,
+    pub(super) projected: EmitterProjected,
+    pub(super) control: Option<ControlVariate>,
     parts: [PartBound; 2],
 }
 
