@@ -45,6 +45,7 @@ pub fn run_replicates(config: &StudyConfig, key: &RowKey) -> Result<Vec<Replicat
                     samples: key.n(),
                     seed,
                     threads: 1,
+                    precision: lambert_estimator::precision::Precision::F64,
                 },
             )
             .map_err(|e| {

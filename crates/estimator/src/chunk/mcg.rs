@@ -79,6 +79,33 @@ impl McgStream {
     #[inline(always)]
     pub fn fill_2d(&self, first: u64, x: &mut [f64], y: &mut [f64]) {
         const SCALE: f64 = 1.0 / 4_294_967_296.0;
+        self.fill_with(first, x, y, |bits| {
+            (
+                (bits >> 32) as f64 * SCALE,
+                (bits & 0xffff_ffff) as f64 * SCALE,
+            )
+        });
+    }
+
+    /// The f32 path's coordinates of outputs `first + k`: the top 24 bits
+    /// of each 32-bit half times 2⁻²⁴ — [`fill_2d`](Self::fill_2d)'s
+    /// coordinates rounded down to the 24 bits an f32 in [0, 1) holds
+    /// exactly (so never 1). Fills the shorter length.
+    #[inline(always)]
+    pub fn fill_2d_f32(&self, first: u64, x: &mut [f32], y: &mut [f32]) {
+        const SCALE: f32 = 1.0 / 16_777_216.0;
+        self.fill_with(first, x, y, |bits| {
+            (
+                (bits >> 40) as f32 * SCALE,
+                ((bits >> 8) & 0xff_ffff) as f32 * SCALE,
+            )
+        });
+    }
+
+    /// `(x[k], y[k]) = point(output(first + k))`, [`LANES`] states stepped
+    /// side by side.
+    #[inline(always)]
+    fn fill_with<T>(&self, first: u64, x: &mut [T], y: &mut [T], point: impl Fn(u64) -> (T, T)) {
         let n = x.len().min(y.len());
         let (x, y) = (&mut x[..n], &mut y[..n]);
         let mut lanes = [0u128; LANES];
@@ -88,12 +115,6 @@ impl McgStream {
             s = s.wrapping_mul(MULTIPLIER);
         }
         let step = power(MULTIPLIER, LANES as u64);
-        let point = |bits: u64| {
-            (
-                (bits >> 32) as f64 * SCALE,
-                (bits & 0xffff_ffff) as f64 * SCALE,
-            )
-        };
         let mut xs = x.chunks_exact_mut(LANES);
         let mut ys = y.chunks_exact_mut(LANES);
         for (xb, yb) in xs.by_ref().zip(ys.by_ref()) {
@@ -135,6 +156,14 @@ mod tests {
                         let bits = want[first + k];
                         assert_eq!(x[k], (bits >> 32) as f64 / 4_294_967_296.0);
                         assert_eq!(y[k], (bits & 0xffff_ffff) as f64 / 4_294_967_296.0);
+                    }
+                    // f32: the same coordinates rounded down to 24 bits.
+                    let (mut x32, mut y32) = (vec![0.0f32; len], vec![0.0f32; len]);
+                    stream.fill_2d_f32(first as u64, &mut x32, &mut y32);
+                    for k in 0..len {
+                        assert_eq!(f64::from(x32[k]), (x[k] * 16_777_216.0).floor() / 16_777_216.0);
+                        assert_eq!(f64::from(y32[k]), (y[k] * 16_777_216.0).floor() / 16_777_216.0);
+                        assert!(x32[k] < 1.0 && y32[k] < 1.0);
                     }
                 }
             }

@@ -22,6 +22,7 @@
 //!   ([`lambert_sampling::isa`]).
 
 mod mcg;
+mod precision_f32;
 
 use std::cell::RefCell;
 
@@ -31,6 +32,7 @@ use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::SampleSequence;
 
 pub use mcg::McgStream;
+pub use precision_f32::{independent_chunk_f32, round_down_24, sequence_chunk_f32};
 
 use crate::statistics::Estimate;
 use crate::strategy::{PartHits, PreparedEmitter};
