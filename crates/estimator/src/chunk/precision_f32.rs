@@ -1,15 +1,22 @@
 //! One chunk of an f32 estimate ([`crate::precision::Precision::F32`]).
 //!
-//! The chunk reads the numbers the f64 chunk reads, in the same order
-//! (the `Pcg64Mcg` stream of the chunk, or the randomized-QMC sequence's
-//! points), and hands each f32 emitter its coordinates **rounded down to
-//! 24 bits**: u₃₂ = ⌊2²⁴ u⌋/2²⁴, exactly representable in f32 and never 1.
-//! (For the independent stream these are the top 24 bits of each 32-bit
-//! half of a 64-bit output, [`McgStream::fill_2d_f32`]; for a sequence,
-//! its f64 point rounded down, so a randomized-QMC point set keeps its
-//! strata down to cells of 2⁻²⁴.) An emitter that runs in f64
-//! ([`crate::strategy::F32Fallback`]) gets the f64 coordinates and the f64
-//! kernel, as in an f64 estimate. The values are accumulated in f64 and
+//! Its coordinates are 24-bit: u₃₂ = k·2⁻²⁴, exactly representable in
+//! f32 and never 1.
+//! - **Independent samples** come from the chunk's own SplitMix64 stream
+//!   ([`SplitMixStream`], seeded with the chunk's seed), whose outputs are
+//!   computed many lanes at a time where the f64 path's `Pcg64Mcg` stream
+//!   is a scalar chain: the generator is part of the per-sample cost the
+//!   f32 path exists to cut. Emitter by emitter, output `offset + i` is
+//!   sample i's point (MIS's second point `n` outputs later), the layout
+//!   of the f64 chunk.
+//! - **Randomized-QMC sequences** give the f64 chunk's points rounded down
+//!   to 24 bits, ⌊2²⁴u⌋/2²⁴ ([`round_down_24`]), so a point set keeps its
+//!   strata down to cells of 2⁻²⁴.
+//!
+//! An emitter that runs in f64 ([`crate::strategy::F32Fallback`]) gets the
+//! f64 chunk's coordinates (the `Pcg64Mcg` stream, or the sequence's
+//! points) and the f64 kernel, so its part of the estimate is what an f64
+//! estimate computes. The values are accumulated in f64 and
 //! summarised as in f64 ([`Estimate::from_values`]), so the result does
 //! not depend on the number of threads; nor on the instruction set (no
 //! fused multiply-adds, no reassociation: the f32 lanes round as the
@@ -22,7 +29,7 @@ use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::SampleSequence;
 
-use super::{ChunkResult, McgStream, BLOCK};
+use super::{ChunkResult, McgStream, SplitMixStream, BLOCK};
 use crate::statistics::Estimate;
 use crate::strategy::{PreparedEmitter, PreparedEmitterF32};
 
@@ -109,6 +116,7 @@ fn block<C: Coordinates>(
 /// samples `first..` starts at output `first + r·n`.
 struct StreamBlock<'a> {
     stream: &'a McgStream,
+    stream32: &'a SplitMixStream,
     first: u64,
     n: u64,
 }
@@ -121,13 +129,14 @@ impl Coordinates for StreamBlock<'_> {
     }
     #[inline(always)]
     fn f32s(&self, request: usize, x: &mut [f32], y: &mut [f32]) {
-        self.stream
+        self.stream32
             .fill_2d_f32(self.first + request as u64 * self.n, x, y);
     }
 }
 
-/// [`super::independent_chunk`] in f32 (module docs): the same stream
-/// positions, each f32 emitter's coordinates rounded down to 24 bits.
+/// [`super::independent_chunk`] in f32 (module docs): each f32 emitter's
+/// coordinates from the chunk's SplitMix64 stream, each f64 emitter's
+/// from its `Pcg64Mcg` stream, both seeded with `chunk_seed`.
 pub fn independent_chunk_f32(
     prepared: &[PreparedEmitter],
     f32s: &[Option<PreparedEmitterF32>],
@@ -137,6 +146,7 @@ pub fn independent_chunk_f32(
     isa: Isa,
 ) -> ChunkResult {
     let stream = McgStream::seed_from_u64(chunk_seed);
+    let stream32 = SplitMixStream::new(chunk_seed);
     // Emitter k's first output: the dimensions of the emitters before it.
     let offsets: Vec<u64> = prepared
         .iter()
@@ -156,6 +166,7 @@ pub fn independent_chunk_f32(
                     let m = BLOCK.min(n - start);
                     let coords = |k: usize| StreamBlock {
                         stream: &stream,
+                        stream32: &stream32,
                         first: offsets[k] + start as u64,
                         n: n as u64,
                     };
