@@ -201,7 +201,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0;
+const PINNED: u64 = 0x7e93_2672_09e3_5b5d;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()
@@ -217,10 +217,16 @@ fn sphere_at(distance: f64, radius: f64, radiance: f64) -> Scene {
     .unwrap()
 }
 
-/// z-test of one f32 estimate at level α = 1e-3 (one test each), N = 2^18.
+/// z-test of one f32 estimate at level α = 1e-3 (one test each), N = 2^18;
+/// an estimate with a rare-event interval (few hits) must contain the
+/// truth in its interval instead.
 fn z_ok(scene: &Scene, strategy: Strategy) -> (f64, bool) {
     let r = estimate(scene, &config(strategy, SequenceKind::Independent, 11)).unwrap();
-    let z = (r.mean - closed_form(scene)) / r.std_error;
+    let truth = closed_form(scene);
+    let z = (r.mean - truth) / r.std_error;
+    if r.interval != IntervalKind::CentralLimit {
+        return (z, r.ci99.0 <= truth && truth <= r.ci99.1);
+    }
     (z, z.abs() <= critical(SequenceKind::Independent, 1e-3))
 }
 
