@@ -50,10 +50,9 @@ fn precision(c: &mut Criterion) {
                 threads: 1,
                 precision,
             };
-            g.bench_function(
-                format!("sphere {strategy} {sequence} {precision}"),
-                |b| b.iter(|| black_box(estimate(&scene, &cfg).unwrap().mean)),
-            );
+            g.bench_function(format!("sphere {strategy} {sequence} {precision}"), |b| {
+                b.iter(|| black_box(estimate(&scene, &cfg).unwrap().mean))
+            });
         }
     }
     g.finish();

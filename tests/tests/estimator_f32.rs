@@ -212,7 +212,9 @@ fn sphere_at(distance: f64, radius: f64, radiance: f64) -> Scene {
     let c = DVec3::new(tilt.sin(), 0.0, tilt.cos()) * distance;
     Scene::new(
         up(),
-        vec![Emitter::Sphere(SphereLight::new(c, radius, radiance).unwrap())],
+        vec![Emitter::Sphere(
+            SphereLight::new(c, radius, radiance).unwrap(),
+        )],
     )
     .unwrap()
 }
@@ -253,14 +255,19 @@ fn f32_falls_back_to_f64_where_it_is_not_enough_and_says_why() {
         matches!(f[0].reason, FallbackReason::ErrorBound { relative } if relative > 1e-3),
         "{f:?}"
     );
-    assert!(f[0].to_string().starts_with("emitters[0] (a sphere) runs in f64: its f32 error bound"));
+    assert!(f[0]
+        .to_string()
+        .starts_with("emitters[0] (a sphere) runs in f64: its f32 error bound"));
     assert!(f32_fallbacks(&far, Strategy::Light).is_empty());
     for s in [Strategy::UniformHemisphere, Strategy::Light] {
         let (z, ok) = z_ok(&far, s);
         assert!(ok, "far sphere {s}: z {z}");
     }
-    let r = estimate(&far, &config(Strategy::UniformHemisphere, SequenceKind::Independent, 1))
-        .unwrap();
+    let r = estimate(
+        &far,
+        &config(Strategy::UniformHemisphere, SequenceKind::Independent, 1),
+    )
+    .unwrap();
     assert_eq!(r.f64_fallbacks, 1);
 
     let distant_disk = Scene::new(
@@ -303,8 +310,11 @@ fn f32_zero_variance_estimates_are_within_their_error_bound() {
     for distance in [1.5, 10.0, 1e3] {
         let scene = sphere_at(distance, 1.0, 3.0);
         let truth = closed_form(&scene);
-        let r = estimate(&scene, &config(Strategy::Projected, SequenceKind::Independent, 2))
-            .unwrap();
+        let r = estimate(
+            &scene,
+            &config(Strategy::Projected, SequenceKind::Independent, 2),
+        )
+        .unwrap();
         assert_eq!(r.f64_fallbacks, 0);
         assert!(
             (r.mean - truth).abs() <= r.std_error,
@@ -312,6 +322,10 @@ fn f32_zero_variance_estimates_are_within_their_error_bound() {
             r.mean,
             r.std_error
         );
-        assert!(r.std_error <= 1e-5 * truth, "d {distance}: se {:e}", r.std_error);
+        assert!(
+            r.std_error <= 1e-5 * truth,
+            "d {distance}: se {:e}",
+            r.std_error
+        );
     }
 }

@@ -248,10 +248,8 @@ fn every_strategy_and_sequence_agrees_with_the_closed_form() {
     ];
     let sequences = ["independent", "stratified", "sobol"];
     let precisions = ["f64", "f32"];
-    let alpha = lambert_validate::sidak_level(
-        0.01,
-        strategies.len() * sequences.len() * precisions.len(),
-    );
+    let alpha =
+        lambert_validate::sidak_level(0.01, strategies.len() * sequences.len() * precisions.len());
     let mut failures = Vec::new();
     for (strategy, precision) in strategies
         .iter()
@@ -645,7 +643,10 @@ fn precision_f32_is_reported_with_its_fallbacks_and_a_bad_value_exits_2() {
     assert_eq!(fallbacks[0]["emitter"].as_u64(), Some(0));
     assert_eq!(fallbacks[0]["kind"].as_str(), Some("sphere"));
     assert!(
-        fallbacks[0]["reason"].as_str().unwrap().contains("f32 error bound"),
+        fallbacks[0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("f32 error bound"),
         "{v}"
     );
     let text = lambert(&args);

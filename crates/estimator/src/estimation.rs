@@ -54,8 +54,8 @@ use lambert_sampling::sequence::{SampleSequence, Sobol, Stratified};
 use crate::interval::{
     honest_interval, ErrorSource, EstimateWarning, IntervalKind, PartTally, SampleSummary, LEVEL,
 };
-use crate::statistics::{run_chunked_merge, Estimate, Mergeable, StatisticsError};
 use crate::precision::Precision;
+use crate::statistics::{run_chunked_merge, Estimate, Mergeable, StatisticsError};
 use crate::strategy::{F32Fallback, PartHits, PreparedEmitter, PreparedEmitterF32, Strategy};
 use crate::strength_scale::{scaled_scene, strength_exponent, unscaled_error, unscaled_report};
 use lambert_light::scene::Scene;

@@ -429,8 +429,11 @@ mod tests {
         let base = "scenes = [\"builtin:triangle\"]\nstrategies = [\"light\"]\nsequences = [\"independent\"]\nn_min_log2 = 5\nn_max_log2 = 6\n";
         let c = StudyConfig::from_toml(base, Path::new(".")).unwrap();
         assert_eq!(c.precisions, vec![Precision::F64]);
-        let c = StudyConfig::from_toml(&format!("{base}precisions = [\"f64\", \"f32\"]"), Path::new("."))
-            .unwrap();
+        let c = StudyConfig::from_toml(
+            &format!("{base}precisions = [\"f64\", \"f32\"]"),
+            Path::new("."),
+        )
+        .unwrap();
         let rows = crate::plan::plan(&c);
         let got: Vec<_> = rows.iter().map(|r| (r.precision, r.log2_n)).collect();
         assert_eq!(

@@ -24,8 +24,8 @@ use clap::Args;
 use lambert_estimator::estimation::{
     estimate, f32_fallbacks, EstimateConfig, EstimateError, EstimateReport,
 };
-use lambert_estimator::precision::Precision;
 use lambert_estimator::interval::IntervalKind;
+use lambert_estimator::precision::Precision;
 use lambert_light::Scene;
 use serde_json::json;
 

@@ -161,8 +161,14 @@ mod tests {
                     let (mut x32, mut y32) = (vec![0.0f32; len], vec![0.0f32; len]);
                     stream.fill_2d_f32(first as u64, &mut x32, &mut y32);
                     for k in 0..len {
-                        assert_eq!(f64::from(x32[k]), (x[k] * 16_777_216.0).floor() / 16_777_216.0);
-                        assert_eq!(f64::from(y32[k]), (y[k] * 16_777_216.0).floor() / 16_777_216.0);
+                        assert_eq!(
+                            f64::from(x32[k]),
+                            (x[k] * 16_777_216.0).floor() / 16_777_216.0
+                        );
+                        assert_eq!(
+                            f64::from(y32[k]),
+                            (y[k] * 16_777_216.0).floor() / 16_777_216.0
+                        );
                         assert!(x32[k] < 1.0 && y32[k] < 1.0);
                     }
                 }

@@ -176,19 +176,30 @@ impl PreparedEmitterF32 {
             ),
             Shape::Sphere(s) => self.technique_batch(
                 #[inline(always)]
-                |w| s.hit_distance(&Ray::new(origin, w), f32::INFINITY).is_some(),
+                |w| {
+                    s.hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                        .is_some()
+                },
                 &block,
                 out,
             ),
             Shape::Disk(d) => self.technique_batch(
                 #[inline(always)]
-                |w| lit && d.hit_distance(&Ray::new(origin, w), f32::INFINITY).is_some(),
+                |w| {
+                    lit && d
+                        .hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                        .is_some()
+                },
                 &block,
                 out,
             ),
             Shape::Polygon(q) => self.technique_batch(
                 #[inline(always)]
-                |w| lit && q.hit_distance(&Ray::new(origin, w), f32::INFINITY).is_some(),
+                |w| {
+                    lit && q
+                        .hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                        .is_some()
+                },
                 &block,
                 out,
             ),
@@ -438,7 +449,11 @@ impl PreparedEmitterF32 {
             let (dir, p_light) = light_sample(block.v(i));
             let p_cos = pdf_cosine_hemisphere(frame.to_local(dir));
             let g = cos_over_pdf(normal, dir, p_light);
-            let light = if lit { weight(h, p_light, p_cos) * g } else { 0.0 };
+            let light = if lit {
+                weight(h, p_light, p_cos) * g
+            } else {
+                0.0
+            };
             hits[0] += u64::from(cosine != 0.0);
             hits[1] += u64::from(light != 0.0);
             *o += radiance * f64::from(cosine + light);

@@ -227,7 +227,10 @@ impl PreparedEmitterF32 {
         };
         let p = receiver.point;
         let (shape, lit, outline) = shape_of(emitter, p)?;
-        let control = prepared.control.as_ref().map(|c: &ControlVariate| c.unoccluded);
+        let control = prepared
+            .control
+            .as_ref()
+            .map(|c: &ControlVariate| c.unoccluded);
         // What the technique draws from (the control variate's residual
         // sampler when it has no closed form).
         let draws = match (technique, control, &prepared.projected) {
@@ -368,15 +371,13 @@ fn shape_of(emitter: &Emitter, p: DVec3) -> Result<(Shape, bool, f64), FallbackR
         Emitter::Disk(d) => {
             let r = in_range(d.disk.radius())?;
             let c = relative(d.disk.center(), p)?;
-            let disk =
-                Disk::new(c, d.disk.normal().as_vec3(), r as f32).map_err(unbuildable)?;
+            let disk = Disk::new(c, d.disk.normal().as_vec3(), r as f32).map_err(unbuildable)?;
             let front = d.disk.normal().dot(p - d.disk.center()) > 0.0;
             // The rim seen from the receiver, as 64 chords' angles.
             let frame = lambert_geometry::f64::Frame::from_normal(d.disk.normal());
             let rim = |k: usize| {
                 let phi = 2.0 * PI * k as f64 / 64.0;
-                d.disk.center() - p
-                    + (frame.x * phi.cos() + frame.y * phi.sin()) * d.disk.radius()
+                d.disk.center() - p + (frame.x * phi.cos() + frame.y * phi.sin()) * d.disk.radius()
             };
             let outline: f64 = (0..64).map(|k| angle(rim(k), rim(k + 1))).sum();
             (Shape::Disk(disk), d.two_sided || front, outline)
@@ -446,8 +447,13 @@ fn projected_of(
     Ok(match (projected, shape) {
         (EmitterProjected::Sky(_), _) => (Projected::Sky, ulps(std::f64::consts::PI)),
         (EmitterProjected::Cap(..), Shape::Cap(frame, cone)) => {
-            let axis = receiver.frame.to_local(frame.z.as_dvec3()).as_vec3().normalize();
-            let cap = ProjectedCap::new(axis, cone.one_minus_cos_theta_max()).map_err(unbuildable)?;
+            let axis = receiver
+                .frame
+                .to_local(frame.z.as_dvec3())
+                .as_vec3()
+                .normalize();
+            let cap =
+                ProjectedCap::new(axis, cone.one_minus_cos_theta_max()).map_err(unbuildable)?;
             let omega = f64::from(cap.projected_solid_angle());
             (Projected::Cap(cap), ulps(omega))
         }
