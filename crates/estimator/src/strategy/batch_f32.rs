@@ -387,8 +387,8 @@ impl PreparedEmitterF32 {
         }
     }
 
-    /// MIS: the weighted cosine-sampled g from `u` plus the weighted
-    /// light-sampled g from `v` (Veach & Guibas 1995), counted apart.
+    /// MIS, dispatched once per block on the light sampler's kind, so that
+    /// the loop calls that kind's sampler and density directly.
     #[inline(always)]
     fn mis_batch(
         &self,
@@ -397,43 +397,94 @@ impl PreparedEmitterF32 {
         block: &Block<'_>,
         out: &mut [f64],
     ) -> PartHits {
-        let light_pdf = hoisted(
-            #[inline(always)]
-            |w: Vec3| -> f32 {
-                match &self.light {
-                    Light::Sky => 1.0 / (4.0 * PI),
-                    Light::Cap(frame, cone) => cone.pdf(frame.to_local(w)),
-                    Light::Sphere(s) => s.pdf(w),
-                    Light::Polygon(p) => p.pdf(w),
-                    Light::Disk(d) => d.pdf(w),
-                    Light::None => 0.0,
-                }
-            },
-        );
-        let light_sample = hoisted(
-            #[inline(always)]
-            |u: Vec2| -> (Vec3, f32) {
-                match &self.light {
-                    Light::Sky => (sample_uniform_sphere(u), 1.0 / (4.0 * PI)),
-                    Light::Cap(frame, cone) => {
-                        (frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle())
-                    }
-                    Light::Sphere(s) => (
+        let none = (Vec3::Z, 0.0);
+        match &self.light {
+            Light::Sky => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |_| 1.0 / (4.0 * PI),
+                #[inline(always)]
+                |u| (sample_uniform_sphere(u), 1.0 / (4.0 * PI)),
+                block,
+                out,
+            ),
+            Light::Cap(frame, cone) => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |w| cone.pdf(frame.to_local(w)),
+                #[inline(always)]
+                |u| (frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle()),
+                block,
+                out,
+            ),
+            Light::Sphere(s) => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |w| s.pdf(w),
+                #[inline(always)]
+                |u| {
+                    (
                         s.frame().from_local(s.cone().sample(u)),
                         1.0 / s.solid_angle(),
-                    ),
-                    Light::Polygon(p) => match p.sample(u) {
-                        Some(l) => (l.direction, l.pdf),
-                        None => (Vec3::Z, 0.0),
-                    },
-                    Light::Disk(d) => {
-                        let l = d.sample(u);
-                        (l.direction, l.pdf)
-                    }
-                    Light::None => (Vec3::Z, 0.0),
-                }
-            },
-        );
+                    )
+                },
+                block,
+                out,
+            ),
+            Light::Polygon(p) => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |w| p.pdf(w),
+                #[inline(always)]
+                |u| p.sample(u).map_or(none, |l| (l.direction, l.pdf)),
+                block,
+                out,
+            ),
+            Light::Disk(d) => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |w| d.pdf(w),
+                #[inline(always)]
+                |u| {
+                    let l = d.sample(u);
+                    (l.direction, l.pdf)
+                },
+                block,
+                out,
+            ),
+            Light::None => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |_| 0.0,
+                #[inline(always)]
+                |_| none,
+                block,
+                out,
+            ),
+        }
+    }
+
+    /// MIS: the weighted cosine-sampled g from `u` plus the weighted
+    /// light-sampled g from `v` (Veach & Guibas 1995), counted apart;
+    /// `light_pdf` and `light_sample` are the light sampler's density and
+    /// draw (density 0: nothing drawn).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn mis_loop(
+        &self,
+        h: Heuristic,
+        sees: impl Fn(Vec3) -> bool,
+        light_pdf: impl Fn(Vec3) -> f32,
+        light_sample: impl Fn(Vec2) -> (Vec3, f32),
+        block: &Block<'_>,
+        out: &mut [f64],
+    ) -> PartHits {
         let (frame, normal, radiance, lit) = (&self.frame, self.normal, self.radiance, self.lit);
         let mut hits = [0u64; 2];
         for (i, o) in out.iter_mut().enumerate() {
