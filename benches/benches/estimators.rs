@@ -40,6 +40,7 @@ fn sphere_light(c: &mut Criterion) {
                 samples: SAMPLES,
                 seed: 1,
                 threads,
+                precision: lambert_estimator::precision::Precision::F64,
             };
             g.bench_function(
                 format!("sphere light {sequence} {threads} thread(s)"),
@@ -56,6 +57,7 @@ fn sphere_light(c: &mut Criterion) {
             samples: SAMPLES,
             seed: 1,
             threads: 1,
+            precision: lambert_estimator::precision::Precision::F64,
         };
         g.bench_function(format!("sphere light independent {isa}"), |b| {
             b.iter(|| {

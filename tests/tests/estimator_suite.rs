@@ -51,6 +51,7 @@ fn config(strategy: Strategy, sequence: SequenceKind, seed: u64) -> EstimateConf
         samples: SAMPLES,
         seed,
         threads: 2,
+        precision: lambert_estimator::precision::Precision::F64,
     }
 }
 

@@ -212,6 +212,7 @@ fn every_strategy_and_sequence_covers_the_truth_or_says_it_cannot() {
                     samples: SAMPLES,
                     seed: 41,
                     threads: 1,
+                    precision: lambert_estimator::precision::Precision::F64,
                 };
                 let r = estimate_at_level(&case.scene, &config, level).unwrap();
                 let what =
@@ -387,6 +388,7 @@ fn counts_fixed_by_stratification_are_declared_and_covered() {
                 samples: 1 << 17,
                 seed,
                 threads: 1,
+                precision: lambert_estimator::precision::Precision::F64,
             };
             let r = estimate_at_level(&scene, &config, level).unwrap();
             assert!(

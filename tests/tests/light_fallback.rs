@@ -79,6 +79,7 @@ fn config(strategy: Strategy, sequence: SequenceKind) -> EstimateConfig {
         samples: 1 << 12,
         seed: 85,
         threads: 1,
+        precision: lambert_estimator::precision::Precision::F64,
     }
 }
 

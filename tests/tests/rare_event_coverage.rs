@@ -52,6 +52,7 @@ fn misses(scene: &Scene, truth: f64, sequence: SequenceKind) -> (u64, u64, u64) 
                     samples: n,
                     seed: 7919 * seed + n,
                     threads: 1,
+                    precision: lambert_estimator::precision::Precision::F64,
                 };
                 let r = estimate(scene, &config).unwrap();
                 if r.interval == IntervalKind::CentralLimit {

@@ -206,6 +206,7 @@ fn the_other_seven_agree_with_the_closed_form_at_enough_samples() {
                 samples,
                 seed: 12,
                 threads: 2,
+                precision: lambert_estimator::precision::Precision::F64,
             };
             let c = critical(sequence, level());
             let r = estimate(&scene, &config).unwrap();

@@ -916,6 +916,7 @@ proptest! {
                     samples: 64,
                     seed: 1,
                     threads: 1,
+                    precision: lambert_estimator::precision::Precision::F64,
                 };
                 match estimate(&scene, &config) {
                     Ok(report) => prop_assert!(

@@ -34,6 +34,7 @@ fn config(strategy: Strategy, sequence: SequenceKind, samples: u64) -> EstimateC
         samples,
         seed: 7,
         threads: 2,
+        precision: lambert_estimator::precision::Precision::F64,
     }
 }
 

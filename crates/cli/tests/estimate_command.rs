@@ -108,11 +108,13 @@ fn json_has_exactly_the_documented_keys() {
         [
             "analytic",
             "ci99",
+            "f64_fallbacks",
             "fallback",
             "hits",
             "interval",
             "mean",
             "ns_per_sample",
+            "precision",
             "rel_error",
             "samples",
             "seconds",
@@ -247,13 +249,20 @@ fn every_strategy_and_sequence_agrees_with_the_closed_form() {
         "control-variate",
     ];
     let sequences = ["independent", "stratified", "sobol"];
-    let alpha = lambert_validate::sidak_level(0.01, strategies.len() * sequences.len());
+    let precisions = ["f64", "f32"];
+    let alpha =
+        lambert_validate::sidak_level(0.01, strategies.len() * sequences.len() * precisions.len());
     let mut failures = Vec::new();
-    for strategy in strategies {
+    for (strategy, precision) in strategies
+        .iter()
+        .flat_map(|s| precisions.iter().map(move |p| (*s, *p)))
+    {
         for sequence in sequences {
             let out = lambert(&[
                 "estimate",
                 scene.path(),
+                "--precision",
+                precision,
                 "--json",
                 "--samples",
                 CLOSED_FORM_SAMPLES,
@@ -297,12 +306,12 @@ fn every_strategy_and_sequence_agrees_with_the_closed_form() {
                 d.cdf(shift - critical) + d.cdf(-shift - critical)
             };
             eprintln!(
-                "{strategy:>18} × {sequence:<11}: z = {z:6.2} (critical {critical:.2}); \
+                "{strategy:>18} × {sequence:<11} {precision}: z = {z:6.2} (critical {critical:.2}); \
                  control (analytic × 1.25): z = {z_control:7.1}, power {power:.6}"
             );
             if z.abs() > critical {
                 failures.push(format!(
-                    "{strategy} × {sequence}: {mean} vs {analytic}, z = {z:.2} beyond {critical:.2}"
+                    "{strategy} × {sequence} {precision}: {mean} vs {analytic}, z = {z:.2} beyond {critical:.2}"
                 ));
             }
             assert!(
@@ -592,4 +601,65 @@ fn sample_values_near_1e160_are_answered() {
     // One 99 % interval at a fixed seed: covers the truth (checked once;
     // the coverage of these intervals is the estimator suites' business).
     assert!(mean.is_finite() && lo <= truth && truth <= hi, "{v}");
+}
+
+/// `--precision`: f32 runs and says so; an emitter f32 cannot estimate
+/// accurately enough (a unit sphere 1e3 away under uniform hemisphere
+/// sampling: its f32 hit-test error bound is ~1 % of its irradiance) is
+/// named with the reason, in JSON and in text; an unknown value is a user
+/// error naming the option.
+#[test]
+fn precision_f32_is_reported_with_its_fallbacks_and_a_bad_value_exits_2() {
+    let scene = TempScene::new("precision_f32", SPHERE);
+    let out = lambert(&[
+        "estimate",
+        scene.path(),
+        "--json",
+        "--samples",
+        "4096",
+        "--precision",
+        "f32",
+    ]);
+    let (v, _) = success_json(&out);
+    assert_eq!(v["precision"].as_str(), Some("f32"));
+    assert_eq!(v["f64_fallbacks"].as_array().map(Vec::len), Some(0), "{v}");
+    let far = TempScene::new(
+        "precision_far",
+        &SPHERE.replace("center = [0.0, 5.0, 8.66]", "center = [0.0, 500.0, 866.0]"),
+    );
+    let args = [
+        "estimate",
+        far.path(),
+        "--samples",
+        "4096",
+        "--strategy",
+        "uniform-hemisphere",
+        "--precision",
+        "f32",
+    ];
+    let mut json_args = args.to_vec();
+    json_args.push("--json");
+    let (v, _) = success_json(&lambert(&json_args));
+    let fallbacks = v["f64_fallbacks"].as_array().expect("a list");
+    assert_eq!(fallbacks.len(), 1, "{v}");
+    assert_eq!(fallbacks[0]["emitter"].as_u64(), Some(0));
+    assert_eq!(fallbacks[0]["kind"].as_str(), Some("sphere"));
+    assert!(
+        fallbacks[0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("f32 error bound"),
+        "{v}"
+    );
+    let text = lambert(&args);
+    assert!(text.status.success());
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        text.contains("emitters[0] (a sphere) runs in f64: its f32 error bound"),
+        "{text}"
+    );
+    user_error(
+        &["estimate", scene.path(), "--precision", "f16"],
+        &["--precision", "\"f16\"", "f64 or f32"],
+    );
 }

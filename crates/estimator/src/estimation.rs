@@ -54,8 +54,11 @@ use lambert_sampling::sequence::{SampleSequence, Sobol, Stratified};
 use crate::interval::{
     honest_interval, ErrorSource, EstimateWarning, IntervalKind, PartTally, SampleSummary, LEVEL,
 };
+use crate::precision::Precision;
 use crate::statistics::{run_chunked_merge, Estimate, Mergeable, StatisticsError};
-use crate::strategy::{PartHits, PreparedEmitter, Strategy, TechniqueFallback};
+use crate::strategy::{
+    F32Fallback, PartHits, PreparedEmitter, PreparedEmitterF32, Strategy, TechniqueFallback,
+};
 use crate::strength_scale::{scaled_scene, strength_exponent, unscaled_error, unscaled_report};
 use lambert_light::scene::Scene;
 
@@ -127,6 +130,9 @@ pub struct EstimateConfig {
     pub seed: u64,
     /// Worker threads (≥ 1); the result does not depend on it.
     pub threads: usize,
+    /// The precision of the per-sample arithmetic
+    /// ([`crate::precision`]; accumulation is always f64).
+    pub precision: Precision,
 }
 
 /// An estimate of a scene's irradiance, with its statistics.
@@ -171,6 +177,11 @@ pub struct EstimateReport {
     /// that E ≳ 1e154 (E itself still in range, [`crate::strength_scale`]):
     /// it is then reported as f64::MAX, a lower bound.
     pub sample_variance: f64,
+    /// The precision asked for.
+    pub precision: Precision,
+    /// With [`Precision::F32`], how many emitters ran in f64 instead
+    /// ([`f32_fallbacks`] names them and says why); 0 in f64.
+    pub f64_fallbacks: usize,
 }
 
 /// Why an estimate could not be run.
@@ -273,6 +284,51 @@ pub fn prepare(scene: &Scene, strategy: Strategy) -> (Vec<PreparedEmitter>, f64)
     (prepared, delta)
 }
 
+/// The f32 forms of `prepared` (the scene's emitters prepared by
+/// [`prepare`]), `None` for each emitter that runs in f64, and those
+/// emitters with the reasons ([`PreparedEmitterF32::new`]).
+pub fn prepare_f32(
+    scene: &Scene,
+    prepared: &[PreparedEmitter],
+) -> (Vec<Option<PreparedEmitterF32>>, Vec<F32Fallback>) {
+    let mut fallbacks = Vec::new();
+    let f32s = prepared
+        .iter()
+        .enumerate()
+        .map(|(k, p)| match PreparedEmitterF32::new(p, &scene.receiver) {
+            Ok(q) => Some(q),
+            Err(reason) => {
+                let emitter = scene_index(scene, k);
+                fallbacks.push(F32Fallback {
+                    emitter,
+                    kind: scene.emitters[emitter].kind(),
+                    reason,
+                });
+                None
+            }
+        })
+        .collect();
+    (f32s, fallbacks)
+}
+
+/// The emitters of `scene` that an f32 estimate with `strategy` runs in
+/// f64, and why (empty when every emitter runs in f32; delta lights are
+/// exact and never listed).
+///
+/// ```
+/// use lambert_estimator::estimation::f32_fallbacks;
+/// use lambert_estimator::strategy::Strategy;
+/// use lambert_light::builtin::builtin_scenes;
+/// let scene = &builtin_scenes()[0].scene;
+/// for f in f32_fallbacks(scene, Strategy::Light) {
+///     println!("{f}"); // "emitters[i] (a …) runs in f64: …"
+/// }
+/// ```
+pub fn f32_fallbacks(scene: &Scene, strategy: Strategy) -> Vec<F32Fallback> {
+    let (prepared, _) = prepare(scene, strategy);
+    prepare_f32(scene, &prepared).1
+}
+
 /// One sample of the scene's irradiance (without the delta lights).
 #[inline]
 pub fn sample_scene<S: SampleSequence>(
@@ -368,7 +424,21 @@ pub fn estimate_with_isa(
     }
     let part_count: usize = prepared.iter().map(|p| p.parts().len()).sum();
     let n = config.samples;
-    let systematic: f64 = prepared.iter().map(PreparedEmitter::systematic_error).sum();
+    // f32: each emitter's f32 form, or None where it runs in f64 (an empty
+    // list in f64 mode: the f64 chunks).
+    let (f32s, f64_fallbacks) = match config.precision {
+        Precision::F64 => (Vec::new(), 0),
+        Precision::F32 => {
+            let (f32s, fallbacks) = prepare_f32(scene, &prepared);
+            (f32s, fallbacks.len())
+        }
+    };
+    let mut systematic: f64 = prepared.iter().map(PreparedEmitter::systematic_error).sum();
+    systematic += f32s
+        .iter()
+        .flatten()
+        .map(PreparedEmitterF32::error_bound)
+        .sum::<f64>();
     // Randomized QMC: per part, the hit count of every replicate when they
     // were all equal (crate::interval explains why that matters).
     let mut fixed_counts: Vec<Option<u64>> = Vec::new();
@@ -386,9 +456,20 @@ pub fn estimate_with_isa(
         (Estimate::new(), Vec::new(), summary, 0.0)
     } else if !rqmc {
         let c: ChunkStats = run_chunked_merge(n, CHUNK_SIZE, config.threads, |chunk, range| {
-            independent_chunk(&prepared, part_count, scene, config.seed, chunk, range, isa)
+            independent_chunk(
+                (&prepared, &f32s),
+                part_count,
+                scene,
+                config.seed,
+                chunk,
+                range,
+                isa,
+            )
         })?;
         if c.estimate.non_finite() > 0 {
+            if f32s.iter().any(Option::is_some) {
+                return Err(NON_FINITE_F32);
+            }
             return Err(first_non_finite_independent(
                 &prepared,
                 scene,
@@ -430,7 +511,7 @@ pub fn estimate_with_isa(
             let seed = mix(config.seed, k);
             let c: ChunkStats = match config.sequence {
                 SequenceKind::Sobol => replicate_estimate(
-                    &prepared,
+                    (&prepared, &f32s),
                     part_count,
                     scene,
                     &Sobol::new(seed),
@@ -451,7 +532,7 @@ pub fn estimate_with_isa(
                         problem: e.to_string(),
                     })?;
                     replicate_estimate(
-                        &prepared,
+                        (&prepared, &f32s),
                         part_count,
                         scene,
                         &seq,
@@ -551,6 +632,8 @@ pub fn estimate_with_isa(
         seconds,
         ns_per_sample: seconds * 1e9 / config.samples as f64,
         sample_variance: variance,
+        precision: config.precision,
+        f64_fallbacks,
     })
 }
 
@@ -638,7 +721,7 @@ fn independent_points(
 /// [`crate::chunk::independent_chunk`]'s: cache-sized blocks, the
 /// instruction set `isa`.
 fn independent_chunk(
-    prepared: &[PreparedEmitter],
+    (prepared, f32s): Emitters<'_>,
     part_count: usize,
     scene: &Scene,
     seed: u64,
@@ -647,9 +730,18 @@ fn independent_chunk(
     isa: Isa,
 ) -> ChunkStats {
     let n = (range.end - range.start) as usize;
-    let c = crate::chunk::independent_chunk(prepared, &scene.receiver, mix(seed, chunk), n, isa);
+    let (receiver, seed) = (&scene.receiver, mix(seed, chunk));
+    let c = if f32s.is_empty() {
+        crate::chunk::independent_chunk(prepared, receiver, seed, n, isa)
+    } else {
+        crate::chunk::independent_chunk_f32(prepared, f32s, receiver, seed, n, isa)
+    };
     chunk_stats(prepared, c, part_count)
 }
+
+/// The prepared emitters, and their f32 forms in an f32 estimate (empty
+/// in f64; `None` for each emitter that runs in f64).
+type Emitters<'a> = (&'a [PreparedEmitter], &'a [Option<PreparedEmitterF32>]);
 
 /// The points of samples `range` of a randomized-QMC sequence, handed to
 /// `visit(k, u, u2)` emitter by emitter: sample i's points are read from
@@ -689,14 +781,19 @@ fn sequence_points<S: SampleSequence>(
 /// samples `range`, evaluated emitter by emitter in the instruction set
 /// `isa` ([`crate::chunk::sequence_chunk`]), counting the parts' hits.
 fn sequence_chunk<S: SampleSequence>(
-    prepared: &[PreparedEmitter],
+    (prepared, f32s): Emitters<'_>,
     part_count: usize,
     scene: &Scene,
     sequence: &S,
     range: std::ops::Range<u64>,
     isa: Isa,
 ) -> ChunkStats {
-    let c = crate::chunk::sequence_chunk(prepared, &scene.receiver, sequence, range, isa);
+    let receiver = &scene.receiver;
+    let c = if f32s.is_empty() {
+        crate::chunk::sequence_chunk(prepared, receiver, sequence, range, isa)
+    } else {
+        crate::chunk::sequence_chunk_f32(prepared, f32s, receiver, sequence, range, isa)
+    };
     chunk_stats(prepared, c, part_count)
 }
 
@@ -718,7 +815,7 @@ fn chunk_stats(
 /// `sequence`, or the first non-finite one as an error.
 #[allow(clippy::too_many_arguments)]
 fn replicate_estimate<S: SampleSequence>(
-    prepared: &[PreparedEmitter],
+    (prepared, f32s): Emitters<'_>,
     part_count: usize,
     scene: &Scene,
     sequence: &S,
@@ -728,9 +825,12 @@ fn replicate_estimate<S: SampleSequence>(
     isa: Isa,
 ) -> Result<ChunkStats, EstimateError> {
     let c: ChunkStats = run_chunked_merge(n, CHUNK_SIZE, threads, |_, range| {
-        sequence_chunk(prepared, part_count, scene, sequence, range, isa)
+        sequence_chunk((prepared, f32s), part_count, scene, sequence, range, isa)
     })?;
     if c.estimate.non_finite() > 0 {
+        if f32s.iter().any(Option::is_some) {
+            return Err(NON_FINITE_F32);
+        }
         return Err(with_randomization(
             first_non_finite_in(prepared, scene, sequence, n),
             k,
@@ -837,6 +937,14 @@ const NON_FINITE_NOT_FOUND: EstimateError = EstimateError::Overflow {
     quantity: "a sample (not found again)",
 };
 
+/// Reported when an f32 estimate has a non-finite sample (an f32
+/// geometric factor that overflowed: the preparation's range checks are
+/// meant to rule it out). The f64 search for the sample would evaluate
+/// other arithmetic, so none is run.
+const NON_FINITE_F32: EstimateError = EstimateError::Overflow {
+    quantity: "a sample's f32 value (run with precision f64 to locate it)",
+};
+
 /// `error` with its randomization set to `k`.
 fn with_randomization(error: EstimateError, k: u64) -> EstimateError {
     match error {
@@ -933,6 +1041,7 @@ mod tests {
                     samples: 70_003,
                     seed: 11,
                     threads,
+                    precision: Precision::F64,
                 };
                 let r = estimate(&named.scene, &config).unwrap();
                 bits.extend([r.mean.to_bits(), r.std_error.to_bits()]);

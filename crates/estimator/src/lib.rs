@@ -12,6 +12,7 @@ pub mod clt;
 pub mod estimation;
 pub mod interval;
 pub mod point;
+pub mod precision;
 pub mod statistics;
 pub mod strategy;
 pub mod strength_scale;

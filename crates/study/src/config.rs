@@ -8,6 +8,7 @@
 //! name = "my-study"                       # output folder name
 //! strategies = ["light", "mis"]           # Strategy names (default: the eight of the built-in study)
 //! sequences = ["independent", "sobol"]    # default: all three
+//! precisions = ["f64", "f32"]             # per-sample arithmetic (default: ["f64"])
 //! n_min_log2 = 5                          # N = 2^5 … 2^12
 //! n_max_log2 = 12
 //! replicates = 8                          # M
@@ -26,6 +27,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 use lambert_estimator::estimation::SequenceKind;
+use lambert_estimator::precision::Precision;
 use lambert_estimator::strategy::Strategy;
 use lambert_light::builtin::builtin_scenes;
 use lambert_light::scene::Scene;
@@ -71,6 +73,14 @@ pub struct StudyConfig {
     pub strategies: Vec<Strategy>,
     /// Sequences, in order.
     pub sequences: Vec<SequenceKind>,
+    /// Precisions of the per-sample arithmetic, in order: an axis of the
+    /// study like the sequences (`precisions = ["f64", "f32"]`; the
+    /// default is f64 alone). A row's
+    /// `precision` column says which it used; with f32, an emitter that
+    /// f32 cannot estimate accurately enough runs in f64
+    /// ([`lambert_estimator::strategy::F32Fallback`]; `lambert estimate
+    /// --precision f32` names them).
+    pub precisions: Vec<Precision>,
     /// Smallest N = 2^n_min_log2.
     pub n_min_log2: u32,
     /// Largest N = 2^n_max_log2.
@@ -123,6 +133,7 @@ impl StudyConfig {
             scenes: all_builtin_scenes(),
             strategies: BUILTIN_STRATEGIES.to_vec(),
             sequences: SequenceKind::ALL.to_vec(),
+            precisions: vec![Precision::F64],
             n_min_log2: 5,
             n_max_log2: 18,
             replicates: 8,
@@ -170,6 +181,9 @@ impl StudyConfig {
         }
         if self.sequences.is_empty() {
             return err("sequences: a study needs at least one sequence".into());
+        }
+        if self.precisions.is_empty() {
+            return err("precisions: a study needs at least one precision".into());
         }
         if self.n_min_log2 < 1 {
             return err("n_min_log2: must be at least 1 (an estimate needs 2 samples)".into());
@@ -235,12 +249,23 @@ impl StudyConfig {
                 })
                 .collect::<Result<_, _>>()?,
         };
+        let precisions = match raw.precisions {
+            None => vec![Precision::F64],
+            Some(list) => list
+                .iter()
+                .map(|s| {
+                    s.parse::<Precision>()
+                        .map_err(|e| StudyError(format!("precisions: {e}")))
+                })
+                .collect::<Result<_, _>>()?,
+        };
         let default = Self::builtin();
         let config = StudyConfig {
             name: raw.name.unwrap_or_else(|| "custom".into()),
             scenes,
             strategies,
             sequences,
+            precisions,
             n_min_log2: raw.n_min_log2.unwrap_or(default.n_min_log2),
             n_max_log2: raw.n_max_log2.unwrap_or(12),
             replicates: raw.replicates.unwrap_or(default.replicates),
@@ -266,6 +291,7 @@ struct RawStudy {
     scenes: Vec<toml::Value>,
     strategies: Option<Vec<String>>,
     sequences: Option<Vec<String>>,
+    precisions: Option<Vec<String>>,
     n_min_log2: Option<u32>,
     n_max_log2: Option<u32>,
     replicates: Option<usize>,
@@ -379,6 +405,46 @@ mod tests {
         .unwrap_err()
         .0;
         assert!(e.contains("n_min_log2"), "{e}");
+        let e = StudyConfig::from_toml(
+            "scenes = [\"builtin:triangle\"]\nprecisions = [\"f64\", \"f16\"]",
+            Path::new("."),
+        )
+        .unwrap_err()
+        .0;
+        assert!(e.contains("precisions") && e.contains("\"f16\""), "{e}");
+        let e = StudyConfig::from_toml(
+            "scenes = [\"builtin:triangle\"]\nprecisions = []",
+            Path::new("."),
+        )
+        .unwrap_err()
+        .0;
+        assert!(e.contains("precisions"), "{e}");
+    }
+
+    /// `precisions` is an axis of the plan (inside the sequences, outside
+    /// N), f64 alone by default; each row carries its precision.
+    #[test]
+    fn precisions_are_an_axis_of_the_plan() {
+        use lambert_estimator::precision::Precision;
+        let base = "scenes = [\"builtin:triangle\"]\nstrategies = [\"light\"]\nsequences = [\"independent\"]\nn_min_log2 = 5\nn_max_log2 = 6\n";
+        let c = StudyConfig::from_toml(base, Path::new(".")).unwrap();
+        assert_eq!(c.precisions, vec![Precision::F64]);
+        let c = StudyConfig::from_toml(
+            &format!("{base}precisions = [\"f64\", \"f32\"]"),
+            Path::new("."),
+        )
+        .unwrap();
+        let rows = crate::plan::plan(&c);
+        let got: Vec<_> = rows.iter().map(|r| (r.precision, r.log2_n)).collect();
+        assert_eq!(
+            got,
+            vec![
+                (Precision::F64, 5),
+                (Precision::F64, 6),
+                (Precision::F32, 5),
+                (Precision::F32, 6)
+            ]
+        );
     }
 
     #[test]

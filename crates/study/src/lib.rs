@@ -29,6 +29,6 @@ pub use aggregate::{aggregate, ReplicateResult, RowStats};
 pub use config::{StudyConfig, StudyError, StudyScene, RUNS_DIR};
 pub use fit::{fit_loglog, LogLogFit};
 pub use plan::{plan, replicate_seed, RowKey, Shard};
-pub use results::{read_results, ResultRow, ResultsWriter, CSV_HEADER};
+pub use results::{read_results, sequence_label, ResultRow, ResultsWriter, CSV_HEADER};
 pub use run::{run_replicates, run_row, run_study, RunOptions};
 pub use summary::{group_summaries, summary_markdown, GroupSummary};

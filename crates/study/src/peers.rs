@@ -39,6 +39,7 @@ use std::fmt::Write;
 use lambert_estimator::strategy::{Heuristic, Strategy};
 
 use crate::fit::LogLogFit;
+use crate::results::sequence_label;
 use crate::summary::GroupSummary;
 
 /// The strategies a pbrt-v4/Mitsuba 3 renderer offers (module docs).
@@ -145,7 +146,15 @@ fn best<'a>(
         })
         .map(|(g, t)| {
             let efficiency = if t.exact { None } else { g.efficiency };
-            (format!("{} × {}", g.strategy, g.sequence), t, efficiency)
+            (
+                format!(
+                    "{} × {}",
+                    g.strategy,
+                    sequence_label(g.sequence, g.precision)
+                ),
+                t,
+                efficiency,
+            )
         })
 }
 
@@ -277,6 +286,7 @@ mod tests {
             scene: scene.into(),
             strategy,
             sequence,
+            precision: lambert_estimator::precision::Precision::F64,
             reference: Some(1.0),
             fit: Some(if exact {
                 LogLogFit::Exact

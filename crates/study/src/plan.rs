@@ -4,6 +4,7 @@ use std::fmt;
 use std::str::FromStr;
 
 use lambert_estimator::estimation::{SequenceKind, RQMC_REPLICATES};
+use lambert_estimator::precision::Precision;
 use lambert_estimator::strategy::Strategy;
 
 use crate::config::StudyConfig;
@@ -19,6 +20,8 @@ pub struct RowKey {
     pub strategy: Strategy,
     /// The sequence.
     pub sequence: SequenceKind,
+    /// The precision of the per-sample arithmetic.
+    pub precision: Precision,
     /// N = 2^log2_n.
     pub log2_n: u32,
 }
@@ -46,17 +49,20 @@ pub fn plan(config: &StudyConfig) -> Vec<RowKey> {
     for scene in 0..config.scenes.len() {
         for &strategy in &config.strategies {
             for &sequence in &config.sequences {
-                for log2_n in config.n_min_log2..=config.n_max_log2 {
-                    if (1u64 << log2_n) < minimum_samples(sequence) {
-                        continue;
+                for &precision in &config.precisions {
+                    for log2_n in config.n_min_log2..=config.n_max_log2 {
+                        if (1u64 << log2_n) < minimum_samples(sequence) {
+                            continue;
+                        }
+                        rows.push(RowKey {
+                            index: rows.len(),
+                            scene,
+                            strategy,
+                            sequence,
+                            precision,
+                            log2_n,
+                        });
                     }
-                    rows.push(RowKey {
-                        index: rows.len(),
-                        scene,
-                        strategy,
-                        sequence,
-                        log2_n,
-                    });
                 }
             }
         }

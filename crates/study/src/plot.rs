@@ -34,7 +34,11 @@ struct Line {
 fn lines_of(rows: &[&ResultRow]) -> Vec<Line> {
     let mut lines: Vec<Line> = Vec::new();
     for r in rows {
-        let label = format!("{} / {}", r.strategy, r.sequence);
+        let label = format!(
+            "{} / {}",
+            r.strategy,
+            crate::results::sequence_label(r.sequence, r.precision)
+        );
         let idx = match lines.iter().position(|l| l.label == label) {
             Some(i) => i,
             None => {

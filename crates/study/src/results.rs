@@ -1,4 +1,4 @@
-//! `results.csv`: one row per (scene, strategy, sequence, N), written and
+//! `results.csv`: one row per (scene, strategy, sequence, precision, N), written and
 //! flushed as each row finishes, read back keeping only whole rows.
 //!
 //! The schema is documented in `notebooks-data/README.md`. Numbers are
@@ -14,15 +14,16 @@ use std::path::Path;
 use std::str::FromStr;
 
 use lambert_estimator::estimation::SequenceKind;
+use lambert_estimator::precision::Precision;
 use lambert_estimator::strategy::Strategy;
 
 use crate::aggregate::RowStats;
 
 /// The header line (without the newline).
-pub const CSV_HEADER: &str = "row,scene,strategy,sequence,log2_n,n,replicates,reference,mean_estimate,mean_rel_error,rmse,rel_rmse,coverage,hits,warnings,std_error,replicate_sd,sample_variance,ns_per_sample,efficiency";
+pub const CSV_HEADER: &str = "row,scene,strategy,sequence,precision,log2_n,n,replicates,reference,mean_estimate,mean_rel_error,rmse,rel_rmse,coverage,hits,warnings,std_error,replicate_sd,sample_variance,ns_per_sample,efficiency";
 
 /// The number of columns.
-const COLUMNS: usize = 20;
+const COLUMNS: usize = 21;
 
 /// The columns that hold measured times (they differ from run to run); every
 /// other column is deterministic.
@@ -39,6 +40,8 @@ pub struct ResultRow {
     pub strategy: Strategy,
     /// Sequence.
     pub sequence: SequenceKind,
+    /// The precision of the per-sample arithmetic.
+    pub precision: Precision,
     /// log₂ N.
     pub log2_n: u32,
     /// The closed form, if any.
@@ -57,11 +60,12 @@ impl ResultRow {
     pub fn to_csv(&self) -> String {
         let s = &self.stats;
         format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             self.row,
             self.scene,
             self.strategy.name(),
             self.sequence.name(),
+            self.precision.name(),
             self.log2_n,
             self.n(),
             s.replicates,
@@ -94,41 +98,52 @@ impl ResultRow {
         if f.len() != COLUMNS {
             return Err(format!(
                 "expected {COLUMNS} fields, got {} (a results.csv from before the hits, \
-                 warnings, std_error and replicate_sd columns cannot be resumed or merged: \
-                 run the study again)",
+                 warnings, std_error and replicate_sd columns, or from before the precision \
+                 column, cannot be resumed or merged: run the study again)",
                 f.len()
             ));
         }
         let row: usize = parse(f[0], "row")?;
-        let log2_n: u32 = parse(f[4], "log2_n")?;
-        let n: u64 = parse(f[5], "n")?;
+        let log2_n: u32 = parse(f[5], "log2_n")?;
+        let n: u64 = parse(f[6], "n")?;
         if log2_n > 62 || n != 1u64 << log2_n {
             return Err(format!("n {n} is not 2^log2_n = 2^{log2_n}"));
         }
         let stats = RowStats {
-            replicates: parse(f[6], "replicates")?,
-            mean_estimate: parse(f[8], "mean_estimate")?,
-            mean_rel_error: parse_opt(f[9], "mean_rel_error")?,
-            rmse: parse_opt(f[10], "rmse")?,
-            rel_rmse: parse_opt(f[11], "rel_rmse")?,
-            coverage: parse_opt(f[12], "coverage")?,
-            hits: parse(f[13], "hits")?,
-            warnings: parse(f[14], "warnings")?,
-            std_error: parse(f[15], "std_error")?,
-            replicate_sd: parse_opt(f[16], "replicate_sd")?,
-            sample_variance: parse(f[17], "sample_variance")?,
-            ns_per_sample: parse(f[18], "ns_per_sample")?,
-            efficiency: parse_opt(f[19], "efficiency")?,
+            replicates: parse(f[7], "replicates")?,
+            mean_estimate: parse(f[9], "mean_estimate")?,
+            mean_rel_error: parse_opt(f[10], "mean_rel_error")?,
+            rmse: parse_opt(f[11], "rmse")?,
+            rel_rmse: parse_opt(f[12], "rel_rmse")?,
+            coverage: parse_opt(f[13], "coverage")?,
+            hits: parse(f[14], "hits")?,
+            warnings: parse(f[15], "warnings")?,
+            std_error: parse(f[16], "std_error")?,
+            replicate_sd: parse_opt(f[17], "replicate_sd")?,
+            sample_variance: parse(f[18], "sample_variance")?,
+            ns_per_sample: parse(f[19], "ns_per_sample")?,
+            efficiency: parse_opt(f[20], "efficiency")?,
         };
         Ok(ResultRow {
             row,
             scene: f[1].to_string(),
             strategy: f[2].parse().map_err(|e| format!("strategy: {e}"))?,
             sequence: f[3].parse().map_err(|e| format!("sequence: {e}"))?,
+            precision: f[4].parse().map_err(|e| format!("precision: {e}"))?,
             log2_n,
-            reference: parse_opt(f[7], "reference")?,
+            reference: parse_opt(f[8], "reference")?,
             stats,
         })
+    }
+}
+
+/// How summaries and plots name a row's sequence: the sequence's name,
+/// followed by ` f32` for a row run in f32 (f64, the default, is not
+/// named, so the built-in study's tables read as before).
+pub fn sequence_label(sequence: SequenceKind, precision: Precision) -> String {
+    match precision {
+        Precision::F64 => sequence.name().to_string(),
+        Precision::F32 => format!("{} f32", sequence.name()),
     }
 }
 
@@ -175,8 +190,13 @@ pub fn read_results(path: &Path) -> Result<(Vec<ResultRow>, u64), String> {
         if first {
             if line != Ok(CSV_HEADER) {
                 return Err(format!(
-                    "{}: the first line is not the results header",
-                    path.display()
+                    "{}: the first line is not the results header{}",
+                    path.display(),
+                    if line.is_ok_and(|l| l.starts_with("row,scene,strategy,sequence,log2_n")) {
+                        " (a results.csv from before the precision column: run the study again)"
+                    } else {
+                        ""
+                    }
                 ));
             }
             first = false;
@@ -260,6 +280,7 @@ mod tests {
             scene: "uniform-sky".into(),
             strategy: Strategy::Light,
             sequence: SequenceKind::Sobol,
+            precision: Precision::F64,
             log2_n: 7,
             reference: Some(std::f64::consts::PI),
             stats: RowStats {

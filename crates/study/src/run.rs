@@ -45,6 +45,7 @@ pub fn run_replicates(config: &StudyConfig, key: &RowKey) -> Result<Vec<Replicat
                     samples: key.n(),
                     seed,
                     threads: 1,
+                    precision: key.precision,
                 },
             )
             .map_err(|e| {
@@ -78,6 +79,7 @@ pub fn run_row(config: &StudyConfig, key: &RowKey) -> Result<ResultRow, String> 
         scene: scene.name.clone(),
         strategy: key.strategy,
         sequence: key.sequence,
+        precision: key.precision,
         log2_n: key.log2_n,
         reference: scene.reference,
         stats: aggregate(scene.reference, &replicates),
@@ -89,6 +91,7 @@ fn same_key(row: &ResultRow, key: &RowKey, config: &StudyConfig) -> bool {
         && row.scene == config.scenes[key.scene].name
         && row.strategy == key.strategy
         && row.sequence == key.sequence
+        && row.precision == key.precision
         && row.log2_n == key.log2_n
         && row.stats.replicates == config.replicates
 }

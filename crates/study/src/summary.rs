@@ -9,12 +9,13 @@ use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use lambert_estimator::estimation::{SequenceKind, RQMC_REPLICATES};
+use lambert_estimator::precision::Precision;
 use lambert_estimator::statistics::rounding::mean_rounding_floor;
 use lambert_estimator::strategy::Strategy;
 use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor};
 
 use crate::fit::{fit_loglog, LogLogFit};
-use crate::results::ResultRow;
+use crate::results::{sequence_label, ResultRow};
 
 /// The target of the time-to-error column: 0.1 % relative RMSE.
 pub const TARGET_REL_RMSE: f64 = 1e-3;
@@ -28,6 +29,8 @@ pub struct GroupSummary {
     pub strategy: Strategy,
     /// Sequence.
     pub sequence: SequenceKind,
+    /// The precision of the per-sample arithmetic.
+    pub precision: Precision,
     /// The scene's closed form.
     pub reference: Option<f64>,
     /// The fit of RMSE against N (`None` without a reference).
@@ -130,12 +133,12 @@ pub fn theoretical_slope(sequence: SequenceKind) -> &'static str {
 /// appearance, and summarises each group.
 pub fn group_summaries(rows: &[ResultRow]) -> Vec<GroupSummary> {
     let alpha = sidak(SPREAD_FAMILY_ALPHA, rows.len());
-    let mut order: Vec<(String, Strategy, SequenceKind)> = Vec::new();
+    let mut order: Vec<(String, Strategy, SequenceKind, Precision)> = Vec::new();
     let mut groups: BTreeMap<usize, Vec<&ResultRow>> = BTreeMap::new();
     let mut sorted: Vec<&ResultRow> = rows.iter().collect();
     sorted.sort_by_key(|r| r.row);
     for r in sorted {
-        let key = (r.scene.clone(), r.strategy, r.sequence);
+        let key = (r.scene.clone(), r.strategy, r.sequence, r.precision);
         let i = match order.iter().position(|k| *k == key) {
             Some(i) => i,
             None => {
@@ -149,7 +152,7 @@ pub fn group_summaries(rows: &[ResultRow]) -> Vec<GroupSummary> {
         .into_iter()
         .map(|(i, mut g)| {
             g.sort_by_key(|r| r.log2_n);
-            let (scene, strategy, sequence) = order[i].clone();
+            let (scene, strategy, sequence, precision) = order[i].clone();
             let last = g[g.len() - 1];
             let reference = last.reference;
             let fit = reference.map(|_| {
@@ -180,6 +183,7 @@ pub fn group_summaries(rows: &[ResultRow]) -> Vec<GroupSummary> {
                 scene,
                 strategy,
                 sequence,
+                precision,
                 reference,
                 fit,
                 ns_per_sample: last.stats.ns_per_sample,
@@ -325,7 +329,7 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
                 "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} |",
                 i + 1,
                 g.strategy,
-                g.sequence,
+                sequence_label(g.sequence, g.precision),
                 seconds(g.time_to_target),
                 g.efficiency
                     .map(|e| format!("{e:.3e}"))
@@ -350,7 +354,7 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
                     notes,
                     "- **few hits**: {} × {} at N = {} (replicates with rare-event intervals).",
                     g.strategy,
-                    g.sequence,
+                    sequence_label(g.sequence, g.precision),
                     exponents(&g.warning_rows, |w| format!(" ({w} of {m})")),
                 );
             }
@@ -359,7 +363,7 @@ pub fn summary_markdown(title: &str, rows: &[ResultRow]) -> String {
                     notes,
                     "- **σ vs spread**: {} × {} at N = {} (spread/σ).",
                     g.strategy,
-                    g.sequence,
+                    sequence_label(g.sequence, g.precision),
                     exponents(&g.spread_flags, |x| format!(" ({x:.2})"))
                 );
             }
@@ -382,6 +386,7 @@ mod tests {
             scene: "s".into(),
             strategy,
             sequence: SequenceKind::Independent,
+            precision: Precision::F64,
             log2_n,
             reference: Some(2.0),
             stats: RowStats {

@@ -238,6 +238,7 @@ fn run_intervals() -> IntervalStudy {
                     scene: scene_index,
                     strategy,
                     sequence,
+                    precision: lambert_estimator::precision::Precision::F64,
                     log2_n,
                 }
             };
@@ -557,6 +558,7 @@ fn slope(scene: &str, strategy: Strategy, sequence: SequenceKind) -> f64 {
         scenes: vec![s],
         strategies: vec![strategy],
         sequences: vec![sequence],
+        precisions: vec![lambert_estimator::precision::Precision::F64],
         n_min_log2: 5,
         n_max_log2: 16,
         replicates: 96,

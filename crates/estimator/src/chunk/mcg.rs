@@ -76,15 +76,41 @@ impl McgStream {
     /// Outputs `first + k` as 2-D points: `x[k]`, `y[k]` are the high and
     /// low 32-bit halves times 2⁻³² (the estimator's coordinates, exact).
     /// Fills the shorter length.
-    ///
-    /// The outputs are drawn [`SPAN`] at a time into a small buffer of
-    /// integers, then converted in a separate loop: the 128-bit multiplies
-    /// are scalar work, but the conversion to f64 then runs in vector
-    /// registers (it was a quarter of the stream's cost done one output at
-    /// a time).
     #[inline(always)]
     pub fn fill_2d(&self, first: u64, x: &mut [f64], y: &mut [f64]) {
         const SCALE: f64 = 1.0 / 4_294_967_296.0;
+        self.fill_with(first, x, y, |bits| {
+            (
+                f64::from((bits >> 32) as u32) * SCALE,
+                f64::from(bits as u32) * SCALE,
+            )
+        });
+    }
+
+    /// The f32 path's coordinates of outputs `first + k`: the top 24 bits
+    /// of each 32-bit half times 2⁻²⁴ — [`fill_2d`](Self::fill_2d)'s
+    /// coordinates rounded down to the 24 bits an f32 in [0, 1) holds
+    /// exactly (so never 1). Fills the shorter length.
+    #[inline(always)]
+    pub fn fill_2d_f32(&self, first: u64, x: &mut [f32], y: &mut [f32]) {
+        const SCALE: f32 = 1.0 / 16_777_216.0;
+        self.fill_with(first, x, y, |bits| {
+            (
+                (bits >> 40) as f32 * SCALE,
+                ((bits >> 8) & 0xff_ffff) as f32 * SCALE,
+            )
+        });
+    }
+
+    /// `(x[k], y[k]) = point(output(first + k))`, [`LANES`] states stepped
+    /// side by side.
+    ///
+    /// The outputs are drawn [`SPAN`] at a time into a small buffer of
+    /// integers, then converted in a separate loop: the 128-bit multiplies
+    /// are scalar work, but the conversion then runs in vector registers
+    /// (it was a quarter of the stream's cost done one output at a time).
+    #[inline(always)]
+    fn fill_with<T>(&self, first: u64, x: &mut [T], y: &mut [T], point: impl Fn(u64) -> (T, T)) {
         let n = x.len().min(y.len());
         let (x, y) = (&mut x[..n], &mut y[..n]);
         let mut lanes = [0u128; LANES];
@@ -109,14 +135,13 @@ impl McgStream {
                 *b = output(lane);
             }
             for ((xk, yk), &b) in xs.iter_mut().zip(ys.iter_mut()).zip(&bits[..m]) {
-                *xk = f64::from((b >> 32) as u32) * SCALE;
-                *yk = f64::from(b as u32) * SCALE;
+                (*xk, *yk) = point(b);
             }
         }
     }
 }
 
-/// Outputs drawn between two conversions to f64 (a multiple of [`LANES`]).
+/// Outputs drawn between two conversions (a multiple of [`LANES`]).
 const SPAN: usize = 64;
 
 #[cfg(test)]
@@ -141,6 +166,20 @@ mod tests {
                         let bits = want[first + k];
                         assert_eq!(x[k], (bits >> 32) as f64 / 4_294_967_296.0);
                         assert_eq!(y[k], (bits & 0xffff_ffff) as f64 / 4_294_967_296.0);
+                    }
+                    // f32: the same coordinates rounded down to 24 bits.
+                    let (mut x32, mut y32) = (vec![0.0f32; len], vec![0.0f32; len]);
+                    stream.fill_2d_f32(first as u64, &mut x32, &mut y32);
+                    for k in 0..len {
+                        assert_eq!(
+                            f64::from(x32[k]),
+                            (x[k] * 16_777_216.0).floor() / 16_777_216.0
+                        );
+                        assert_eq!(
+                            f64::from(y32[k]),
+                            (y[k] * 16_777_216.0).floor() / 16_777_216.0
+                        );
+                        assert!(x32[k] < 1.0 && y32[k] < 1.0);
                     }
                 }
             }

@@ -22,6 +22,8 @@
 //!   ([`lambert_sampling::isa`]).
 
 mod mcg;
+mod precision_f32;
+mod splitmix;
 
 use std::cell::RefCell;
 
@@ -31,6 +33,8 @@ use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::SampleSequence;
 
 pub use mcg::McgStream;
+pub use precision_f32::{independent_chunk_f32, round_down_24, sequence_chunk_f32};
+pub use splitmix::SplitMixStream;
 
 use crate::statistics::Estimate;
 use crate::strategy::{PartHits, PreparedEmitter};

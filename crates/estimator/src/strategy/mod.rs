@@ -51,6 +51,7 @@
 //! per-emitter estimates: unbiased, since each term is.
 
 mod batch;
+mod batch_f32;
 mod control_variate;
 mod emitter_area;
 mod emitter_light;
@@ -58,6 +59,7 @@ mod emitter_projected;
 mod fallback;
 mod occluded;
 mod prepared;
+mod prepared_f32;
 pub mod value_bound;
 
 pub use control_variate::ControlVariate;
@@ -67,6 +69,7 @@ pub use emitter_projected::EmitterProjected;
 pub use fallback::TechniqueFallback;
 pub use occluded::{delta_irradiance_visible, OccludedEmitter};
 pub use prepared::{PartHits, PreparedEmitter};
+pub use prepared_f32::{F32Fallback, FallbackReason, PreparedEmitterF32, F32_MAX_RELATIVE_ERROR};
 pub use value_bound::{PartBound, PartShape};
 
 use std::fmt;

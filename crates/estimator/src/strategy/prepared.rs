@@ -30,8 +30,8 @@ pub struct PreparedEmitter {
     pub fallback: Option<TechniqueFallback>,
     pub(super) light: EmitterLight,
     pub(super) area: EmitterArea,
-    projected: EmitterProjected,
-    control: Option<ControlVariate>,
+    pub(super) projected: EmitterProjected,
+    pub(super) control: Option<ControlVariate>,
     parts: [PartBound; 2],
 }
 

@@ -1,0 +1,274 @@
+//! One chunk of an f32 estimate ([`crate::precision::Precision::F32`]).
+//!
+//! Its coordinates are 24-bit: u₃₂ = k·2⁻²⁴, exactly representable in
+//! f32 and never 1.
+//! - **Independent samples** come from the chunk's own SplitMix64 stream
+//!   ([`SplitMixStream`], seeded with the chunk's seed), whose outputs are
+//!   computed many lanes at a time where the f64 path's `Pcg64Mcg` stream
+//!   is a scalar chain: the generator is part of the per-sample cost the
+//!   f32 path exists to cut. Emitter by emitter, output `offset + i` is
+//!   sample i's point (MIS's second point `n` outputs later), the layout
+//!   of the f64 chunk.
+//! - **Randomized-QMC sequences** give the f64 chunk's points rounded down
+//!   to 24 bits, ⌊2²⁴u⌋/2²⁴ ([`round_down_24`]), so a point set keeps its
+//!   strata down to cells of 2⁻²⁴.
+//!
+//! An emitter that runs in f64 ([`crate::strategy::F32Fallback`]) gets the
+//! f64 chunk's coordinates (the `Pcg64Mcg` stream, or the sequence's
+//! points) and the f64 kernel, so its part of the estimate is what an f64
+//! estimate computes. The values are accumulated in f64 and
+//! summarised as in f64 ([`Estimate::from_values`]), so the result does
+//! not depend on the number of threads; nor on the instruction set (no
+//! fused multiply-adds, no reassociation: the f32 lanes round as the
+//! baseline build does, [`lambert_sampling::isa`]).
+
+use std::cell::RefCell;
+
+use glam::DVec2;
+use lambert_light::receiver::Receiver;
+use lambert_sampling::isa::Isa;
+use lambert_sampling::sequence::SampleSequence;
+
+use super::{ChunkResult, McgStream, SplitMixStream, BLOCK};
+use crate::statistics::Estimate;
+use crate::strategy::{PreparedEmitter, PreparedEmitterF32};
+
+/// A worker thread's buffers for f32 chunks, kept from chunk to chunk.
+#[derive(Default)]
+struct Scratch {
+    values: Vec<f64>,
+    /// f32 coordinates (u, then MIS's second point v).
+    u32s: [Vec<f32>; 4],
+    /// f64 coordinates, for emitters that run in f64.
+    u64s: [Vec<f64>; 4],
+    points: Vec<DVec2>,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// Runs `f` with this thread's f32 scratch (values sized `n` and zeroed,
+/// coordinate blocks sized [`BLOCK`]).
+fn with_scratch<R>(n: usize, f: impl FnOnce(&mut Scratch) -> R) -> R {
+    SCRATCH.with(|cell| {
+        let mut guard = cell.borrow_mut();
+        let s = &mut *guard;
+        s.values.clear();
+        s.values.resize(n, 0.0);
+        s.u32s.iter_mut().for_each(|v| v.resize(BLOCK, 0.0));
+        s.u64s.iter_mut().for_each(|v| v.resize(BLOCK, 0.0));
+        f(s)
+    })
+}
+
+/// Where one emitter's coordinates for a block come from.
+trait Coordinates {
+    /// Request `request` (0: u, 1: MIS's v) of this block, in f64.
+    fn f64s(&self, request: usize, x: &mut [f64], y: &mut [f64]);
+    /// The same rounded down to 24 bits.
+    fn f32s(&self, request: usize, x: &mut [f32], y: &mut [f32]);
+}
+
+/// Evaluates one block of every emitter into `values`, in the emitters'
+/// precisions, with the coordinates `coords(k)` gives emitter k; adds the
+/// part hits to `hits`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn block<C: Coordinates>(
+    prepared: &[PreparedEmitter],
+    f32s: &[Option<PreparedEmitterF32>],
+    receiver: &Receiver,
+    s: &mut Scratch,
+    start: usize,
+    m: usize,
+    coords: impl Fn(usize) -> C,
+    hits: &mut [[u64; 2]],
+) {
+    for (k, (p, h)) in prepared.iter().zip(hits.iter_mut()).enumerate() {
+        let c = coords(k);
+        let mis = p.technique.dimensions() > 1;
+        let values = &mut s.values[start..start + m];
+        let got = match &f32s[k] {
+            Some(q) => {
+                let [ux, uy, vx, vy] = &mut s.u32s;
+                c.f32s(0, &mut ux[..m], &mut uy[..m]);
+                if mis {
+                    c.f32s(1, &mut vx[..m], &mut vy[..m]);
+                }
+                q.add_batch(&ux[..m], &uy[..m], &vx[..m], &vy[..m], values)
+            }
+            None => {
+                let [ux, uy, vx, vy] = &mut s.u64s;
+                c.f64s(0, &mut ux[..m], &mut uy[..m]);
+                if mis {
+                    c.f64s(1, &mut vx[..m], &mut vy[..m]);
+                }
+                p.add_batch(receiver, &ux[..m], &uy[..m], &vx[..m], &vy[..m], values)
+            }
+        };
+        h[0] += got[0];
+        h[1] += got[1];
+    }
+}
+
+/// One emitter's block of the independent stream: its request r of
+/// samples `first..` starts at output `first + r·n`.
+struct StreamBlock<'a> {
+    stream: &'a McgStream,
+    stream32: &'a SplitMixStream,
+    first: u64,
+    n: u64,
+}
+
+impl Coordinates for StreamBlock<'_> {
+    #[inline(always)]
+    fn f64s(&self, request: usize, x: &mut [f64], y: &mut [f64]) {
+        self.stream
+            .fill_2d(self.first + request as u64 * self.n, x, y);
+    }
+    #[inline(always)]
+    fn f32s(&self, request: usize, x: &mut [f32], y: &mut [f32]) {
+        self.stream32
+            .fill_2d_f32(self.first + request as u64 * self.n, x, y);
+    }
+}
+
+/// [`super::independent_chunk`] in f32 (module docs): each f32 emitter's
+/// coordinates from the chunk's SplitMix64 stream, each f64 emitter's
+/// from its `Pcg64Mcg` stream, both seeded with `chunk_seed`.
+pub fn independent_chunk_f32(
+    prepared: &[PreparedEmitter],
+    f32s: &[Option<PreparedEmitterF32>],
+    receiver: &Receiver,
+    chunk_seed: u64,
+    n: usize,
+    isa: Isa,
+) -> ChunkResult {
+    let stream = McgStream::seed_from_u64(chunk_seed);
+    let stream32 = SplitMixStream::new(chunk_seed);
+    // Emitter k's first output: the dimensions of the emitters before it.
+    let offsets: Vec<u64> = prepared
+        .iter()
+        .scan(0u64, |o, p| {
+            let first = *o;
+            *o += (p.technique.dimensions() * n) as u64;
+            Some(first)
+        })
+        .collect();
+    with_scratch(n, |s| {
+        isa.run(
+            #[inline(always)]
+            || {
+                let mut hits = vec![[0u64; 2]; prepared.len()];
+                let mut start = 0;
+                while start < n {
+                    let m = BLOCK.min(n - start);
+                    let coords = |k: usize| StreamBlock {
+                        stream: &stream,
+                        stream32: &stream32,
+                        first: offsets[k] + start as u64,
+                        n: n as u64,
+                    };
+                    block(prepared, f32s, receiver, s, start, m, coords, &mut hits);
+                    start += m;
+                }
+                ChunkResult {
+                    estimate: Estimate::from_values(&s.values),
+                    hits,
+                }
+            },
+        )
+    })
+}
+
+/// `u` rounded down to 24 bits (module docs): ⌊2²⁴ u⌋/2²⁴ for u ∈ [0, 1).
+#[inline(always)]
+pub fn round_down_24(u: f64) -> f32 {
+    ((u * 16_777_216.0) as u32) as f32 * (1.0 / 16_777_216.0)
+}
+
+/// [`super::sequence_chunk`] in f32 (module docs): the sequence's points
+/// for samples `range`, each f32 emitter's rounded down to 24 bits.
+pub fn sequence_chunk_f32<S: SampleSequence>(
+    prepared: &[PreparedEmitter],
+    f32s: &[Option<PreparedEmitterF32>],
+    receiver: &Receiver,
+    sequence: &S,
+    range: std::ops::Range<u64>,
+    isa: Isa,
+) -> ChunkResult {
+    let n = (range.end - range.start) as usize;
+    let dims: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
+    let firsts: Vec<usize> = prepared
+        .iter()
+        .scan(0usize, |d, p| {
+            let first = *d;
+            *d += p.technique.dimensions();
+            Some(first)
+        })
+        .collect();
+    with_scratch(n, |s| {
+        let mut points = std::mem::take(&mut s.points);
+        points.clear();
+        points.resize(n * dims, DVec2::ZERO);
+        let result = isa.run(
+            #[inline(always)]
+            || {
+                for (request, block) in points.chunks_exact_mut(n).enumerate() {
+                    sequence.fill_2d(range.start, request as u64, block);
+                }
+                let mut hits = vec![[0u64; 2]; prepared.len()];
+                let mut start = 0;
+                while start < n {
+                    let m = BLOCK.min(n - start);
+                    let coords = |k: usize| SequenceBlock {
+                        points: &points,
+                        first: firsts[k],
+                        start,
+                        n,
+                    };
+                    block(prepared, f32s, receiver, s, start, m, coords, &mut hits);
+                    start += m;
+                }
+                ChunkResult {
+                    estimate: Estimate::from_values(&s.values),
+                    hits,
+                }
+            },
+        );
+        s.points = points;
+        result
+    })
+}
+
+/// One emitter's block of a chunk's sequence points: request r is
+/// `points[(first + r)·n + start..]`.
+struct SequenceBlock<'a> {
+    points: &'a [DVec2],
+    first: usize,
+    start: usize,
+    n: usize,
+}
+
+impl SequenceBlock<'_> {
+    #[inline(always)]
+    fn at(&self, request: usize, len: usize) -> &[DVec2] {
+        &self.points[(self.first + request) * self.n + self.start..][..len]
+    }
+}
+
+impl Coordinates for SequenceBlock<'_> {
+    #[inline(always)]
+    fn f64s(&self, request: usize, x: &mut [f64], y: &mut [f64]) {
+        for ((p, xk), yk) in self.at(request, x.len()).iter().zip(x).zip(y) {
+            (*xk, *yk) = (p.x, p.y);
+        }
+    }
+    #[inline(always)]
+    fn f32s(&self, request: usize, x: &mut [f32], y: &mut [f32]) {
+        for ((p, xk), yk) in self.at(request, x.len()).iter().zip(x).zip(y) {
+            (*xk, *yk) = (round_down_24(p.x), round_down_24(p.y));
+        }
+    }
+}

@@ -1,0 +1,514 @@
+//! The f32 block kernels: one emitter's estimate for a block of samples,
+//! the per-sample arithmetic in f32.
+//!
+//! The layout is that of the f64 kernels ([`PreparedEmitter::add_batch`]):
+//! the decisions (technique, emitter kind, sampler) are made once per
+//! block, and a loop specialised for them runs over coordinate arrays
+//! with every call inlined, to be compiled for the instruction set of the
+//! caller's [`Isa::run`](lambert_sampling::isa::Isa::run) — with twice the
+//! lanes, since an f32 takes half the bits. Each sample's geometric factor
+//! g = V(ω) cos θ/p (or MIS's weighted sum of two) is formed in f32 and
+//! added to the sample's f64 value as L·g, L the emitter's radiance
+//! ([`PreparedEmitterF32`]'s docs say why L stays in f64).
+//!
+//! **What differs from the f64 kernels** (the expectation is the same; the
+//! values are f32's):
+//! - solid-angle samples of a sphere, a sky cap, a disk or a polygon are
+//!   not looked up again: a direction drawn inside the emitter's solid
+//!   angle sees it (the sampler draws only the emitter), and whether it
+//!   sees the emitting side is one test per emitter, not per sample. Only
+//!   cos θ ≤ 0 scores 0. Where f64 casts a ray and may miss a direction
+//!   drawn a rounding error outside the outline, f32 does not;
+//! - MIS weights are always formed from the ratio r = p_b/p_a, as
+//!   1/(1 + r) or 1/(1 + r²): the f32 range is too short for p_a² (a
+//!   light of 1e-19 sr overflows it);
+//! - uniform and cosine samples multiply by the constant 1/p (2π, π)
+//!   rather than divide by the density.
+
+use glam::{Vec2, Vec3};
+use lambert_geometry::f32::{Frame, Intersect, Ray};
+use lambert_sampling::f32::{
+    pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
+    sample_uniform_sphere, LightSampler, UniformCone,
+};
+
+use super::prepared_f32::{Area, Light, PreparedEmitterF32, Projected, Shape};
+use super::{Heuristic, PartHits, Technique};
+
+use std::f32::consts::PI;
+
+/// The MIS weight of a sample drawn with density `pa` > 0 against `pb` ≥ 0,
+/// from the ratio r = pb/pa: 1/(1 + r) (balance), 1/(1 + r²) (power).
+/// Saturates to 0 or 1 instead of overflowing; 0 when pa is not > 0.
+#[inline(always)]
+fn weight(h: Heuristic, pa: f32, pb: f32) -> f32 {
+    let r = pb / pa;
+    let w = match h {
+        Heuristic::Balance => 1.0 / (1.0 + r),
+        Heuristic::Power => 1.0 / (1.0 + r * r),
+    };
+    if pa > 0.0 {
+        w
+    } else {
+        0.0
+    }
+}
+
+/// One block's f32 coordinates, cut to one length.
+struct Block<'a> {
+    ux: &'a [f32],
+    uy: &'a [f32],
+    vx: &'a [f32],
+    vy: &'a [f32],
+}
+
+impl Block<'_> {
+    #[inline(always)]
+    fn u(&self, i: usize) -> Vec2 {
+        Vec2::new(self.ux[i], self.uy[i])
+    }
+
+    #[inline(always)]
+    fn v(&self, i: usize) -> Vec2 {
+        Vec2::new(self.vx[i], self.vy[i])
+    }
+}
+
+/// `out[i] += L·g(i)` (g widened to f64), counting the non-zero g.
+#[inline(always)]
+fn single(radiance: f64, out: &mut [f64], g: impl Fn(usize) -> f32) -> PartHits {
+    let mut hits = 0u64;
+    for (i, o) in out.iter_mut().enumerate() {
+        let v = g(i);
+        hits += u64::from(v != 0.0);
+        *o += radiance * f64::from(v);
+    }
+    [hits, 0]
+}
+
+/// cos θ/p of a direction drawn with density `pdf`, 0 if cos θ ≤ 0 or the
+/// density is not positive and finite.
+#[inline(always)]
+fn cos_over_pdf(normal: Vec3, direction: Vec3, pdf: f32) -> f32 {
+    let cos = normal.dot(direction);
+    if cos > 0.0 && pdf > 0.0 && pdf.is_finite() {
+        cos / pdf
+    } else {
+        0.0
+    }
+}
+
+/// Solid-angle sampling of a cone (a sphere's or a sky cap's) in its own
+/// frame: g = Ω max(n_local·ω_local, 0), n_local the receiver's normal
+/// rotated into the cone's frame once.
+#[inline(always)]
+fn cone_batch(
+    frame: &Frame,
+    cone: &UniformCone,
+    normal: Vec3,
+    radiance: f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    let n_local = frame.to_local(normal);
+    let omega = cone.solid_angle();
+    single(
+        radiance,
+        out,
+        #[inline(always)]
+        |i| omega * n_local.dot(cone.sample(block.u(i))).max(0.0),
+    )
+}
+
+/// The closure itself, so that `#[inline(always)]` may sit on it.
+#[inline(always)]
+fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
+    f
+}
+
+impl PreparedEmitterF32 {
+    /// Adds this emitter's estimate for samples `i` of a block to `out[i]`:
+    /// `out[i] += L·g((ux[i], uy[i]), (vx[i], vy[i]))` with g in f32
+    /// (module docs), over the shortest of the slices (`vx`, `vy` are read
+    /// only by MIS). Returns how many samples had a non-zero value in each
+    /// part ([`PreparedEmitter::parts`](super::PreparedEmitter::parts)).
+    #[inline(always)]
+    pub fn add_batch(
+        &self,
+        ux: &[f32],
+        uy: &[f32],
+        vx: &[f32],
+        vy: &[f32],
+        out: &mut [f64],
+    ) -> PartHits {
+        let mis = matches!(self.technique, Technique::Mis(_));
+        let mut n = ux.len().min(uy.len()).min(out.len());
+        if mis {
+            n = n.min(vx.len()).min(vy.len());
+        }
+        let block = Block {
+            ux: &ux[..n],
+            uy: &uy[..n],
+            vx: if mis { &vx[..n] } else { &[] },
+            vy: if mis { &vy[..n] } else { &[] },
+        };
+        let out = &mut out[..n];
+        if let Some(c) = self.constant {
+            for o in out.iter_mut() {
+                *o += c;
+            }
+            return [if c != 0.0 { n as u64 } else { 0 }, 0];
+        }
+        let lit = self.lit;
+        let origin = Vec3::ZERO;
+        match &self.shape {
+            Shape::Sky => self.technique_batch(
+                #[inline(always)]
+                |_| true,
+                &block,
+                out,
+            ),
+            Shape::Cap(frame, cone) => self.technique_batch(
+                #[inline(always)]
+                |w| cone.pdf(frame.to_local(w)) > 0.0,
+                &block,
+                out,
+            ),
+            Shape::Sphere(s) => self.technique_batch(
+                #[inline(always)]
+                |w| {
+                    s.hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                        .is_some()
+                },
+                &block,
+                out,
+            ),
+            Shape::Disk(d) => self.technique_batch(
+                #[inline(always)]
+                |w| {
+                    lit && d
+                        .hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                        .is_some()
+                },
+                &block,
+                out,
+            ),
+            Shape::Polygon(q) => self.technique_batch(
+                #[inline(always)]
+                |w| {
+                    lit && q
+                        .hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                        .is_some()
+                },
+                &block,
+                out,
+            ),
+        }
+    }
+
+    /// The loop of this emitter's technique over a block, `sees(ω)` its
+    /// hit test (already specialised to its kind).
+    #[inline(always)]
+    fn technique_batch(
+        &self,
+        sees: impl Fn(Vec3) -> bool,
+        block: &Block<'_>,
+        out: &mut [f64],
+    ) -> PartHits {
+        let (frame, normal, radiance) = (&self.frame, self.normal, self.radiance);
+        match self.technique {
+            Technique::UniformHemisphere => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| {
+                    let w = frame.from_local(sample_uniform_hemisphere(block.u(i)));
+                    let cos = w.dot(normal);
+                    if cos > 0.0 && sees(w) {
+                        2.0 * PI * cos
+                    } else {
+                        0.0
+                    }
+                },
+            ),
+            Technique::CosineHemisphere => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| {
+                    let local = sample_cosine_hemisphere(block.u(i));
+                    if local.z > 0.0 && sees(frame.from_local(local)) {
+                        PI
+                    } else {
+                        0.0
+                    }
+                },
+            ),
+            Technique::Light => self.light_batch(block, out),
+            // Resolved when prepared: a constant, or its residual sampler's
+            // technique (light or projected).
+            Technique::ControlVariate => [0, 0],
+            Technique::Area => self.area_batch(block, out),
+            Technique::Projected => self.projected_batch(block, out),
+            Technique::Mis(h) => self.mis_batch(h, sees, block, out),
+        }
+    }
+
+    /// Solid-angle sampling: cos θ/p of every direction the light sampler
+    /// draws (module docs: no lookup). Cones (spheres, sky caps) in their
+    /// own frame: g = Ω max(n_local·ω_local, 0).
+    #[inline(always)]
+    fn light_batch(&self, block: &Block<'_>, out: &mut [f64]) -> PartHits {
+        let (normal, radiance) = (self.normal, if self.lit { self.radiance } else { 0.0 });
+        match &self.light {
+            Light::Sphere(s) => cone_batch(s.frame(), s.cone(), normal, radiance, block, out),
+            Light::Cap(frame, cone) => cone_batch(frame, cone, normal, radiance, block, out),
+            Light::Sky => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| 4.0 * PI * normal.dot(sample_uniform_sphere(block.u(i))).max(0.0),
+            ),
+            Light::Polygon(p) => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| match p.sample(block.u(i)) {
+                    Some(s) => cos_over_pdf(normal, s.direction, s.pdf),
+                    None => 0.0,
+                },
+            ),
+            Light::Disk(d) => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| {
+                    let s = d.sample(block.u(i));
+                    cos_over_pdf(normal, s.direction, s.pdf)
+                },
+            ),
+            Light::None => [0, 0],
+        }
+    }
+
+    /// Area sampling: cos θ/p of the direction toward a uniform point of
+    /// the emitter (p = p_A d²/|cos θ_l|); a point on a sphere's hidden
+    /// side gives none.
+    #[inline(always)]
+    fn area_batch(&self, block: &Block<'_>, out: &mut [f64]) -> PartHits {
+        let (normal, radiance) = (self.normal, if self.lit { self.radiance } else { 0.0 });
+        let origin = Vec3::ZERO;
+        let through = hoisted(
+            #[inline(always)]
+            |s: Option<lambert_sampling::f32::LightSample>| match s {
+                Some(s) => cos_over_pdf(normal, s.direction, s.pdf),
+                None => 0.0,
+            },
+        );
+        match &self.area {
+            Area::Sphere(a) => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| through(a.sample(origin, normal, block.u(i))),
+            ),
+            Area::Disk(a) => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| through(a.sample(origin, normal, block.u(i))),
+            ),
+            Area::Polygon(a) => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| through(a.sample(origin, normal, block.u(i))),
+            ),
+            Area::None => [0, 0],
+        }
+    }
+
+    /// Projected-solid-angle sampling: cos θ/p = Ω⊥ (to a few ulps) for
+    /// every direction drawn, the density formed from the same n·ω.
+    #[inline(always)]
+    fn projected_batch(&self, block: &Block<'_>, out: &mut [f64]) -> PartHits {
+        let (frame, normal, radiance) = (&self.frame, self.normal, self.radiance);
+        let origin = Vec3::ZERO;
+        match &self.projected {
+            Projected::Sky => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| {
+                    let w = frame.from_local(sample_cosine_hemisphere(block.u(i)));
+                    cos_over_pdf(normal, w, normal.dot(w).max(0.0) / PI)
+                },
+            ),
+            Projected::Cap(cap) => {
+                let omega = cap.projected_solid_angle();
+                single(
+                    radiance,
+                    out,
+                    #[inline(always)]
+                    |i| {
+                        let w = frame.from_local(cap.sample(block.u(i)).direction);
+                        cos_over_pdf(normal, w, normal.dot(w).max(0.0) / omega)
+                    },
+                )
+            }
+            Projected::Sphere(s) => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| {
+                    let l = s.sample(block.u(i));
+                    cos_over_pdf(normal, l.direction, l.pdf)
+                },
+            ),
+            Projected::Polygon(p) => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| {
+                    let l = p.sample(block.u(i));
+                    cos_over_pdf(normal, l.direction, l.pdf)
+                },
+            ),
+            Projected::PolygonFan(s) => single(
+                radiance,
+                out,
+                #[inline(always)]
+                |i| match s.sample(origin, normal, block.u(i)) {
+                    Some(l) => cos_over_pdf(normal, l.direction, l.pdf),
+                    None => 0.0,
+                },
+            ),
+            Projected::None => [0, 0],
+        }
+    }
+
+    /// MIS, dispatched once per block on the light sampler's kind, so that
+    /// the loop calls that kind's sampler and density directly.
+    #[inline(always)]
+    fn mis_batch(
+        &self,
+        h: Heuristic,
+        sees: impl Fn(Vec3) -> bool,
+        block: &Block<'_>,
+        out: &mut [f64],
+    ) -> PartHits {
+        let none = (Vec3::Z, 0.0);
+        match &self.light {
+            Light::Sky => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |_| 1.0 / (4.0 * PI),
+                #[inline(always)]
+                |u| (sample_uniform_sphere(u), 1.0 / (4.0 * PI)),
+                block,
+                out,
+            ),
+            Light::Cap(frame, cone) => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |w| cone.pdf(frame.to_local(w)),
+                #[inline(always)]
+                |u| (frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle()),
+                block,
+                out,
+            ),
+            Light::Sphere(s) => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |w| s.pdf(w),
+                #[inline(always)]
+                |u| {
+                    (
+                        s.frame().from_local(s.cone().sample(u)),
+                        1.0 / s.solid_angle(),
+                    )
+                },
+                block,
+                out,
+            ),
+            Light::Polygon(p) => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |w| p.pdf(w),
+                #[inline(always)]
+                |u| p.sample(u).map_or(none, |l| (l.direction, l.pdf)),
+                block,
+                out,
+            ),
+            Light::Disk(d) => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |w| d.pdf(w),
+                #[inline(always)]
+                |u| {
+                    let l = d.sample(u);
+                    (l.direction, l.pdf)
+                },
+                block,
+                out,
+            ),
+            Light::None => self.mis_loop(
+                h,
+                sees,
+                #[inline(always)]
+                |_| 0.0,
+                #[inline(always)]
+                |_| none,
+                block,
+                out,
+            ),
+        }
+    }
+
+    /// MIS: the weighted cosine-sampled g from `u` plus the weighted
+    /// light-sampled g from `v` (Veach & Guibas 1995), counted apart;
+    /// `light_pdf` and `light_sample` are the light sampler's density and
+    /// draw (density 0: nothing drawn).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn mis_loop(
+        &self,
+        h: Heuristic,
+        sees: impl Fn(Vec3) -> bool,
+        light_pdf: impl Fn(Vec3) -> f32,
+        light_sample: impl Fn(Vec2) -> (Vec3, f32),
+        block: &Block<'_>,
+        out: &mut [f64],
+    ) -> PartHits {
+        let (frame, normal, radiance, lit) = (&self.frame, self.normal, self.radiance, self.lit);
+        let mut hits = [0u64; 2];
+        for (i, o) in out.iter_mut().enumerate() {
+            let local = sample_cosine_hemisphere(block.u(i));
+            let w = frame.from_local(local);
+            let p_cos = pdf_cosine_hemisphere(local);
+            let cos = normal.dot(w);
+            let cosine = if p_cos > 0.0 && cos > 0.0 && sees(w) {
+                weight(h, p_cos, light_pdf(w)) * (cos / p_cos)
+            } else {
+                0.0
+            };
+            let (dir, p_light) = light_sample(block.v(i));
+            let p_cos = pdf_cosine_hemisphere(frame.to_local(dir));
+            let g = cos_over_pdf(normal, dir, p_light);
+            let light = if lit {
+                weight(h, p_light, p_cos) * g
+            } else {
+                0.0
+            };
+            hits[0] += u64::from(cosine != 0.0);
+            hits[1] += u64::from(light != 0.0);
+            *o += radiance * f64::from(cosine + light);
+        }
+        hits
+    }
+}
