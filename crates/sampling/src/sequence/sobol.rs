@@ -59,7 +59,10 @@
 //! **Batches**: [`SampleSequence::fill_2d`] computes a dimension pair for
 //! many consecutive indices at once, in the bit-reversed domain where the
 //! scramble acts directly, with byte-wise tables of the generator matrices
-//! (`sobol_batch.rs`); the values are the cursor's, to the bit.
+//! (built once per process) and, for dimension 1 (Pascal's matrix), a
+//! five-step butterfly (`sobol_batch.rs`); it is inlined into its caller, so
+//! it runs in the caller's vector instruction set. The values are the
+//! cursor's, to the bit.
 //!
 //! Why not the `sobol_burley` crate: it returns only f32, and with index
 //! shuffling gives at most `2^16` samples per seed (it keeps 16 direction
