@@ -435,8 +435,28 @@ fn judge_estimate(call: &Call, map: &Map<String, Value>, context: &Context) -> R
             "interval",
             "warning",
             "fallback",
+            "precision",
+            "f64_fallbacks",
         ],
     )?;
+    // The fuzzer runs f64 estimates: their precision is "f64" and no
+    // emitter can fall back to f64.
+    if map.get("precision").and_then(Value::as_str) != Some("f64")
+        || map
+            .get("f64_fallbacks")
+            .and_then(Value::as_array)
+            .map(Vec::len)
+            != Some(0)
+    {
+        return Err(Failure {
+            class: Class::BadJson,
+            detail: format!(
+                "`precision` = {:?}, `f64_fallbacks` = {:?} in an f64 estimate",
+                map.get("precision"),
+                map.get("f64_fallbacks")
+            ),
+        });
+    }
     if !matches!(map.get("fallback"), Some(Value::String(_) | Value::Null)) {
         return Err(Failure {
             class: Class::BadJson,
