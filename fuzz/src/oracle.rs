@@ -709,7 +709,7 @@ mod tests {
         let call = Call::from_template("estimate {scene} --json --samples 64").unwrap();
         let line = |mean: &str, se: &str, analytic: &str, rel: &str, z: &str| {
             format!(
-                "{{\"mean\":{mean},\"std_error\":{se},\"ci99\":[0.5,1.5],\"samples\":64,\"seconds\":0.1,\"ns_per_sample\":3.0,\"analytic\":{analytic},\"rel_error\":{rel},\"z\":{z},\"hits\":64,\"interval\":\"clt\",\"warning\":null,\"fallback\":null}}\n"
+                "{{\"mean\":{mean},\"std_error\":{se},\"ci99\":[0.5,1.5],\"samples\":64,\"seconds\":0.1,\"ns_per_sample\":3.0,\"analytic\":{analytic},\"rel_error\":{rel},\"z\":{z},\"hits\":64,\"interval\":\"clt\",\"warning\":null,\"fallback\":null,\"precision\":\"f64\",\"f64_fallbacks\":[]}}\n"
             )
         };
         let ctx = Context {
@@ -719,6 +719,13 @@ mod tests {
         };
         let ok = outcome(0, &line("1.0", "0.1", "1.0", "0.0", "0.0"), "");
         assert_eq!(judge(&call, &ok, &ctx), Verdict::Answered);
+        // An f64 call whose answer claims another precision is wrong.
+        let f32_claim = outcome(
+            0,
+            &line("1.0", "0.1", "1.0", "0.0", "0.0").replace("\"f64\"", "\"f32\""),
+            "",
+        );
+        assert_eq!(class(judge(&call, &f32_claim, &ctx)), Some(Class::BadJson));
         let exact = outcome(0, &line("1.0", "0.0", "1.0", "0.0", "null"), "");
         assert_eq!(judge(&call, &exact, &ctx), Verdict::Answered);
         let null_mean = outcome(0, &line("null", "0.1", "1.0", "0.0", "0.0"), "");
