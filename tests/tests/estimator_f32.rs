@@ -183,7 +183,11 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// error of every built-in scene × strategy × sequence (10 007 samples,
 /// seed 3) are pinned. A change to an f32 warp, sampler or kernel, to the
 /// 24-bit coordinates or to the error bound moves the digest; re-pin only
-/// with the reason written here.
+/// with the reason written here. (Re-pinned once: when a chunk's values
+/// were summed in 16 lanes instead of 4, which regroups the compensated
+/// sums; with 4 lanes the digest was the earlier 0x7e93_2672_09e3_5b5d, so
+/// nothing else moved. The f64 digests did not move: those sums round to
+/// the same bits there.)
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -201,7 +205,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0x7e93_2672_09e3_5b5d;
+const PINNED: u64 = 0x57d9_cd41_85bd_fa6a;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()
