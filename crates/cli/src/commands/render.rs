@@ -65,8 +65,8 @@ pub struct RenderOptions {
     pub threads: Option<usize>,
     /// Irradiance mode: compare these strategies (comma-separated, the
     /// first is the baseline of the ratios) against a reference image,
-    /// per-pixel RMSE; writes FILE.<strategy>.exr for each and
-    /// FILE.reference.exr (see the notes below).
+    /// per-pixel RMSE; writes `FILE.<strategy>.exr` for each and
+    /// `FILE.reference.exr` (see the notes below).
     #[arg(long, value_delimiter = ',')]
     pub compare: Option<Vec<String>>,
     /// With --compare: each strategy renders with the samples per pixel

@@ -76,7 +76,7 @@ pub fn run(
     Ok(())
 }
 
-/// FILE.exr → FILE.<tag>.exr.
+/// `FILE.exr` → `FILE.<tag>.exr`.
 fn tagged(out: &Path, tag: &str) -> PathBuf {
     let stem = out
         .file_stem()
