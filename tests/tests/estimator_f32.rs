@@ -187,7 +187,11 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// were summed in 16 lanes instead of 4, which regroups the compensated
 /// sums; with 4 lanes the digest was the earlier 0x7e93_2672_09e3_5b5d, so
 /// nothing else moved. The f64 digests did not move: those sums round to
-/// the same bits there.)
+/// the same bits there. Re-pinned again when MIS took its weighted values
+/// in one division each and spheres and sky caps their own MIS kernel
+/// (`Heuristic::weighted_f32`, `ConeMisF32`): the only code that changed
+/// runs for the `mis` and `mis-balance` strategies alone; the z-tests above
+/// still pass for them.)
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -205,7 +209,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0x57d9_cd41_85bd_fa6a;
+const PINNED: u64 = 0x55b2_41de_5846_ad7a;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

@@ -1064,12 +1064,16 @@ mod tests {
     /// only `auto` on every scene and `light`, `mis` and `mis-balance` on
     /// the disk scenes changed bits), and when the projected samplers' Ω⊥
     /// error joined the floor (only `auto`'s and `projected`'s standard
-    /// errors).)
+    /// errors), and when MIS took its weighted values in one division
+    /// ([`crate::strategy::Heuristic::weighted`], and spheres and sky caps their own kernel,
+    /// `ConeMis`): compared row by row, only `mis` and `mis-balance` rows
+    /// moved, means by at most 2e-16 relative and standard errors by at most
+    /// 4e-10 relative (rounding).)
     #[test]
     fn randomized_qmc_estimates_are_pinned() {
         let pinned = [
-            (SequenceKind::Sobol, 0xdfff_0d9f_cd8a_bc67_u64),
-            (SequenceKind::Stratified, 0xfbe1_5985_1c1e_767d),
+            (SequenceKind::Sobol, 0x7d92_00a5_4e81_92d3_u64),
+            (SequenceKind::Stratified, 0x42b4_f64b_987d_26d8),
         ];
         for (sequence, want) in pinned {
             let one = rqmc_bits(sequence, 1);

@@ -25,6 +25,7 @@ use lambert_sampling::f64::{
     sample_uniform_hemisphere, LightSampler, SphereSolidAngle,
 };
 
+use super::cone_mis::ConeMis;
 use super::emitter_light::{sample_cap, sample_disk, sample_polygon, sample_sky, sample_sphere};
 use super::prepared::uniform_cos;
 use super::{
@@ -61,6 +62,11 @@ impl PreparedEmitter {
             vy: if mis { &vy[..n] } else { &[] },
         };
         let out = &mut out[..n];
+        if let Technique::Mis(h) = self.technique {
+            if let Some(cone) = self.cone_mis(receiver) {
+                return cone_mis_batch(&cone, h, &block, out);
+            }
+        }
         match (&self.light, &self.emitter) {
             (EmitterLight::Sphere(cone), Emitter::Sphere(e)) => {
                 if self.technique == Technique::Light {
@@ -194,6 +200,22 @@ fn sphere_cone_batch(
         *o += f;
     }
     [hits, 0]
+}
+
+/// MIS on a sphere or sky cap ([`ConeMis`]): both halves in the frames
+/// where they are cheapest, counted apart.
+#[inline(always)]
+fn cone_mis_batch(cone: &ConeMis, h: Heuristic, block: &Block<'_>, out: &mut [f64]) -> PartHits {
+    // A local copy stays in registers (see `technique_batch`).
+    let cone = *cone;
+    let mut hits = [0u64; 2];
+    for (i, o) in out.iter_mut().enumerate() {
+        let (cosine, light) = cone.parts(h, block.u(i), block.v(i));
+        hits[0] += u64::from(cosine != 0.0);
+        hits[1] += u64::from(light != 0.0);
+        *o += cosine + light;
+    }
+    hits
 }
 
 /// `f` itself: a closure given here can carry `#[inline(always)]` (an
@@ -383,7 +405,7 @@ fn mis_batch(
             Some(l) => uniform_cos(l, p_light > 0.0, w, normal),
             None => radiance_cos(w),
         };
-        let weighted = h.weight(p_cos, p_light) * l_cos / p_cos;
+        let weighted = h.weighted(l_cos, p_cos, p_light);
         let cosine = if p_cos > 0.0 { weighted } else { 0.0 };
         // Also branch-free, for the same reason (a direction and density
         // stand in where the sampler gave none; their value is not used).
@@ -397,7 +419,7 @@ fn mis_batch(
             Some(l) => uniform_cos(l, true, s.direction, normal),
             None => radiance_cos(s.direction),
         };
-        let weighted = h.weight(s.pdf, p_cos) * l_cos / s.pdf;
+        let weighted = h.weighted(l_cos, s.pdf, p_cos);
         let light = if drawn { weighted } else { 0.0 };
         hits[0] += u64::from(cosine != 0.0);
         hits[1] += u64::from(light != 0.0);

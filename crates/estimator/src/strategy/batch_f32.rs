@@ -32,27 +32,11 @@ use lambert_sampling::f32::{
     sample_uniform_sphere, LightSampler, UniformCone,
 };
 
+use super::cone_mis::ConeMisF32;
 use super::prepared_f32::{Area, Light, PreparedEmitterF32, Projected, Shape};
 use super::{Heuristic, PartHits, Technique};
 
 use std::f32::consts::PI;
-
-/// The MIS weight of a sample drawn with density `pa` > 0 against `pb` ≥ 0,
-/// from the ratio r = pb/pa: 1/(1 + r) (balance), 1/(1 + r²) (power).
-/// Saturates to 0 or 1 instead of overflowing; 0 when pa is not > 0.
-#[inline(always)]
-fn weight(h: Heuristic, pa: f32, pb: f32) -> f32 {
-    let r = pb / pa;
-    let w = match h {
-        Heuristic::Balance => 1.0 / (1.0 + r),
-        Heuristic::Power => 1.0 / (1.0 + r * r),
-    };
-    if pa > 0.0 {
-        w
-    } else {
-        0.0
-    }
-}
 
 /// One block's f32 coordinates, cut to one length.
 struct Block<'a> {
@@ -398,6 +382,22 @@ impl PreparedEmitterF32 {
         out: &mut [f64],
     ) -> PartHits {
         let none = (Vec3::Z, 0.0);
+        let cone = match &self.light {
+            Light::Cap(frame, cone) => Some(ConeMisF32::new(1.0, frame, cone, &self.frame)),
+            Light::Sphere(s) => Some(ConeMisF32::new(1.0, s.frame(), s.cone(), &self.frame)),
+            _ => None,
+        };
+        if let (Some(cone), true) = (cone, self.lit) {
+            let radiance = self.radiance;
+            let mut hits = [0u64; 2];
+            for (i, o) in out.iter_mut().enumerate() {
+                let (cosine, light) = cone.parts(h, block.u(i), block.v(i));
+                hits[0] += u64::from(cosine != 0.0);
+                hits[1] += u64::from(light != 0.0);
+                *o += radiance * f64::from(cosine + light);
+            }
+            return hits;
+        }
         match &self.light {
             Light::Sky => self.mis_loop(
                 h,
@@ -493,15 +493,14 @@ impl PreparedEmitterF32 {
             let p_cos = pdf_cosine_hemisphere(local);
             let cos = normal.dot(w);
             let cosine = if p_cos > 0.0 && cos > 0.0 && sees(w) {
-                weight(h, p_cos, light_pdf(w)) * (cos / p_cos)
+                h.weighted_f32(cos, p_cos, light_pdf(w))
             } else {
                 0.0
             };
             let (dir, p_light) = light_sample(block.v(i));
             let p_cos = pdf_cosine_hemisphere(frame.to_local(dir));
-            let g = cos_over_pdf(normal, dir, p_light);
             let light = if lit {
-                weight(h, p_light, p_cos) * g
+                h.weighted_f32(normal.dot(dir).max(0.0), p_light, p_cos)
             } else {
                 0.0
             };

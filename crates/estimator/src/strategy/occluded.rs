@@ -153,11 +153,11 @@ impl<'a> OccludedEmitter<'a> {
                 let p_cos = pdf_cosine_hemisphere(local);
                 if p_cos > 0.0 {
                     let w = frame.from_local(local);
-                    f += h.weight(p_cos, self.light.pdf(w)) * seen_cos(w) / p_cos;
+                    f += h.weighted(seen_cos(w), p_cos, self.light.pdf(w));
                 }
                 if let Some(s) = self.light.sample(u2) {
                     let p_cos = pdf_cosine_hemisphere(frame.to_local(s.direction));
-                    f += h.weight(s.pdf, p_cos) * seen_cos(s.direction) / s.pdf;
+                    f += h.weighted(seen_cos(s.direction), s.pdf, p_cos);
                 }
                 f
             }

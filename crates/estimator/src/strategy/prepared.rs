@@ -11,6 +11,7 @@ use lambert_sampling::f64::{
 };
 use lambert_sampling::sequence::SampleSequence;
 
+use super::cone_mis::ConeMis;
 use super::{
     ControlVariate, EmitterArea, EmitterLight, EmitterProjected, PartBound, Strategy, Technique,
     TechniqueFallback,
@@ -211,6 +212,19 @@ impl PreparedEmitter {
         }
     }
 
+    /// MIS on a sphere or sky cap, whose light sampler is a uniform cone:
+    /// the two halves in the frames where they are cheapest ([`ConeMis`]);
+    /// `None` for other light samplers.
+    #[inline(always)]
+    pub(super) fn cone_mis(&self, receiver: &Receiver) -> Option<ConeMis> {
+        let l = self.uniform_radiance();
+        match &self.light {
+            EmitterLight::Sphere(s) => Some(ConeMis::new(l, s.frame(), s.cone(), &receiver.frame)),
+            EmitterLight::Cap(frame, cone) => Some(ConeMis::new(l, frame, cone, &receiver.frame)),
+            _ => None,
+        }
+    }
+
     /// The two parts of an MIS sample: the weighted value of the
     /// cosine-sampled direction (from `u`) and of the light-sampled one
     /// (from `u2`); each is 0 when its direction is not drawn or misses.
@@ -222,6 +236,9 @@ impl PreparedEmitter {
         u: DVec2,
         u2: DVec2,
     ) -> (f64, f64) {
+        if let Some(cone) = self.cone_mis(receiver) {
+            return cone.parts(h, u, u2);
+        }
         let frame = &receiver.frame;
         let radiance_cos = |w: DVec3| self.radiance_cos(receiver, w);
         // Where the light sampler covers exactly the directions that see
@@ -238,7 +255,7 @@ impl PreparedEmitter {
                 Some(l) => uniform_cos(l, p_light > 0.0, w, receiver.normal),
                 None => radiance_cos(w),
             };
-            cosine = h.weight(p_cos, p_light) * l_cos / p_cos;
+            cosine = h.weighted(l_cos, p_cos, p_light);
         }
         let mut light = 0.0;
         if let Some(s) = self.light.sample(u2) {
@@ -248,7 +265,7 @@ impl PreparedEmitter {
                 Some(l) => uniform_cos(l, true, s.direction, receiver.normal),
                 None => radiance_cos(s.direction),
             };
-            light = h.weight(s.pdf, p_cos) * l_cos / s.pdf;
+            light = h.weighted(l_cos, s.pdf, p_cos);
         }
         (cosine, light)
     }
