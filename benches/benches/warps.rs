@@ -257,10 +257,16 @@ fn soa_batches(c: &mut Criterion) {
                     );
                     let mut first = 0u64;
                     b.iter(|| {
-                        isa.run(|| {
-                            rng.$fill(first, &mut $ux, &mut $uy);
-                            $warp;
-                        });
+                        // Inlined into `run`, so that the fill and the warp
+                        // are compiled for `isa` (a closure left out of line
+                        // is compiled for the baseline set).
+                        isa.run(
+                            #[inline(always)]
+                            || {
+                                rng.$fill(first, &mut $ux, &mut $uy);
+                                $warp;
+                            },
+                        );
                         first = first.wrapping_add(BATCH);
                         black_box((&$wx, &$wy, &$wz));
                     })
@@ -314,7 +320,10 @@ fn soa_batches(c: &mut Criterion) {
     g.bench_function("splitmix64 rng only f32", |b| {
         let (mut ux, mut uy) = (vec![0.0f32; n], vec![0.0f32; n]);
         b.iter(|| {
-            Isa::selected().run(|| rng.fill_2d_f32(0, &mut ux, &mut uy));
+            Isa::selected().run(
+                #[inline(always)]
+                || rng.fill_2d_f32(0, &mut ux, &mut uy),
+            );
             black_box((&ux, &uy));
         })
     });
