@@ -21,7 +21,7 @@
 const MULTIPLIER: u128 = 0x2360_ED05_1FC6_5DA4_4385_DF64_9FCC_F645;
 
 /// Independent states stepped side by side.
-pub const LANES: usize = 4;
+pub const LANES: usize = 8;
 
 /// A `Pcg64Mcg` stream, addressed by output index (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -105,38 +105,82 @@ impl McgStream {
     /// `(x[k], y[k]) = point(output(first + k))`, [`LANES`] states stepped
     /// side by side.
     ///
-    /// The outputs are drawn [`SPAN`] at a time into a small buffer of
-    /// integers, then converted in a separate loop: the 128-bit multiplies
-    /// are scalar work, but the conversion then runs in vector registers
-    /// (it was a quarter of the stream's cost done one output at a time).
+    /// The states are held as their 64-bit halves, one array each, and the
+    /// 128-bit step is written in 64- and 32-bit multiplies ([`Lanes`]), so
+    /// that the compiler steps all lanes in vector registers (a `u128`
+    /// multiply stays scalar: three dependent 64-bit multiplies per
+    /// output). The outputs are drawn [`SPAN`] at a time into a small
+    /// buffer of integers, then converted in a separate loop.
     #[inline(always)]
     fn fill_with<T>(&self, first: u64, x: &mut [T], y: &mut [T], point: impl Fn(u64) -> (T, T)) {
         let n = x.len().min(y.len());
         let (x, y) = (&mut x[..n], &mut y[..n]);
-        let mut lanes = [0u128; LANES];
-        let mut s = self.state.wrapping_mul(power(MULTIPLIER, first + 1));
-        for lane in lanes.iter_mut() {
-            *lane = s;
-            s = s.wrapping_mul(MULTIPLIER);
-        }
+        let mut lanes = Lanes::starting_at(self.state.wrapping_mul(power(MULTIPLIER, first + 1)));
         let step = power(MULTIPLIER, LANES as u64);
+        let step = ((step >> 64) as u64, step as u64);
         let mut bits = [0u64; SPAN];
         for (xs, ys) in x.chunks_mut(SPAN).zip(y.chunks_mut(SPAN)) {
             let m = xs.len();
             let full = m / LANES * LANES;
-            for group in bits[..full].chunks_exact_mut(LANES) {
-                for (b, lane) in group.iter_mut().zip(lanes.iter_mut()) {
-                    *b = output(*lane);
-                    *lane = lane.wrapping_mul(step);
-                }
+            for group in bits[..full].as_chunks_mut::<LANES>().0 {
+                lanes.output(group);
+                lanes.step(step);
             }
             // Only the last span can end inside a group of lanes.
-            for (b, &lane) in bits[full..m].iter_mut().zip(lanes.iter()) {
-                *b = output(lane);
-            }
+            let mut last = [0u64; LANES];
+            lanes.output(&mut last);
+            bits[full..m].copy_from_slice(&last[..m - full]);
             for ((xk, yk), &b) in xs.iter_mut().zip(ys.iter_mut()).zip(&bits[..m]) {
                 (*xk, *yk) = point(b);
             }
+        }
+    }
+}
+
+/// [`LANES`] consecutive states s_{a+j}, as high and low 64-bit halves.
+struct Lanes {
+    hi: [u64; LANES],
+    lo: [u64; LANES],
+}
+
+impl Lanes {
+    /// The states `s·M^j`, j < [`LANES`].
+    #[inline(always)]
+    fn starting_at(mut s: u128) -> Self {
+        let (mut hi, mut lo) = ([0u64; LANES], [0u64; LANES]);
+        for j in 0..LANES {
+            (hi[j], lo[j]) = ((s >> 64) as u64, s as u64);
+            s = s.wrapping_mul(MULTIPLIER);
+        }
+        Lanes { hi, lo }
+    }
+
+    /// Every lane's PCG-XSL-RR output, as [`output`] gives it.
+    #[inline(always)]
+    fn output(&self, out: &mut [u64; LANES]) {
+        for j in 0..LANES {
+            out[j] = (self.hi[j] ^ self.lo[j]).rotate_right((self.hi[j] >> 58) as u32);
+        }
+    }
+
+    /// s ← s·m mod 2¹²⁸ on every lane, m = (high, low) halves:
+    /// lo' = lo·m_lo mod 2⁶⁴, hi' = ⌊lo·m_lo / 2⁶⁴⌋ + lo·m_hi + hi·m_lo
+    /// (mod 2⁶⁴), the high product from four 32 × 32-bit products.
+    #[inline(always)]
+    fn step(&mut self, (m_hi, m_lo): (u64, u64)) {
+        const LOW: u64 = 0xffff_ffff;
+        let (b1, b0) = (m_lo >> 32, m_lo & LOW);
+        for j in 0..LANES {
+            let (hi, lo) = (self.hi[j], self.lo[j]);
+            let (a1, a0) = (lo >> 32, lo & LOW);
+            let (p00, p01, p10, p11) = (a0 * b0, a0 * b1, a1 * b0, a1 * b1);
+            // < 3·2³², no overflow.
+            let mid = (p00 >> 32) + (p01 & LOW) + (p10 & LOW);
+            let carry_hi = p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
+            self.lo[j] = (mid << 32) | (p00 & LOW);
+            self.hi[j] = carry_hi
+                .wrapping_add(lo.wrapping_mul(m_hi))
+                .wrapping_add(hi.wrapping_mul(m_lo));
         }
     }
 }
