@@ -158,8 +158,8 @@ impl Lanes {
     /// Every lane's PCG-XSL-RR output, as [`output`] gives it.
     #[inline(always)]
     fn output(&self, out: &mut [u64; LANES]) {
-        for j in 0..LANES {
-            out[j] = (self.hi[j] ^ self.lo[j]).rotate_right((self.hi[j] >> 58) as u32);
+        for ((o, &hi), &lo) in out.iter_mut().zip(&self.hi).zip(&self.lo) {
+            *o = (hi ^ lo).rotate_right((hi >> 58) as u32);
         }
     }
 
