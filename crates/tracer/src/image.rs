@@ -15,25 +15,38 @@ pub struct Image {
     std_error: Option<Vec<f32>>,
 }
 
-/// A band of whole rows of an [`Image`] ([`Image::bands_mut`]), with
-/// its own row numbers (0 at its top row).
+/// The pixels of one tile of an [`Image`] ([`Image::tiles_mut`]),
+/// writable on their own: a piece of each of the tile's rows, with the
+/// tile's own coordinates (0, 0 at its top left pixel).
 #[derive(Debug)]
-pub(crate) struct Band<'a> {
-    width: usize,
+pub(crate) struct TileMut<'a> {
+    /// The image columns [x0, x1) and rows [y0, y1) of the tile.
+    pub(crate) x: (u32, u32),
+    pub(crate) y: (u32, u32),
+    rows: Vec<TileRow<'a>>,
+}
+
+/// A tile's piece of one image row, in every layer.
+#[derive(Debug)]
+struct TileRow<'a> {
     rgb: &'a mut [[f32; 3]],
     irradiance: &'a mut [f32],
     std_error: Option<&'a mut [f32]>,
 }
 
-impl Band<'_> {
-    /// Stores a pixel (rounded to f32) at column `x` of the band's row `y`.
+impl TileMut<'_> {
+    /// Stores the tile's pixels, given row by row (as many as it has).
     #[inline]
-    pub(crate) fn set(&mut self, x: u32, y: u32, p: &Pixel) {
-        let i = y as usize * self.width + x as usize;
-        self.rgb[i] = p.rgb.to_f32();
-        self.irradiance[i] = p.irradiance as f32;
-        if let Some(s) = &mut self.std_error {
-            s[i] = p.std_error as f32;
+    pub(crate) fn set_all(&mut self, pixels: &[Pixel]) {
+        let width = (self.x.1 - self.x.0) as usize;
+        for (row, pixels) in self.rows.iter_mut().zip(pixels.chunks(width)) {
+            for (i, p) in pixels.iter().enumerate() {
+                row.rgb[i] = p.rgb.to_f32();
+                row.irradiance[i] = p.irradiance as f32;
+                if let Some(s) = &mut row.std_error {
+                    s[i] = p.std_error as f32;
+                }
+            }
         }
     }
 }
@@ -96,27 +109,50 @@ impl Image {
         }
     }
 
-    /// The image cut into bands of `rows` rows (the last may be
-    /// shorter), top to bottom, each writable on its own: a renderer fills
-    /// them in parallel.
+    /// The image cut into square tiles of side `side` (those at the
+    /// right and bottom edges may be narrower), row of tiles by row of
+    /// tiles, each writable on its own: a renderer fills them in
+    /// parallel, straight into the image.
     ///
     /// # Panics
-    /// If `rows` is 0.
-    pub(crate) fn bands_mut(&mut self, rows: u32) -> Vec<Band<'_>> {
-        assert!(rows > 0, "bands of at least one row");
-        let width = self.width as usize;
-        let len = width * rows as usize;
-        let mut std_error = self.std_error.as_mut().map(|s| s.chunks_mut(len));
-        self.rgb
-            .chunks_mut(len)
-            .zip(self.irradiance.chunks_mut(len))
-            .map(|(rgb, irradiance)| Band {
-                width,
-                rgb,
-                irradiance,
-                std_error: std_error.as_mut().and_then(|s| s.next()),
+    /// If `side` is 0.
+    pub(crate) fn tiles_mut(&mut self, side: u32) -> Vec<TileMut<'_>> {
+        assert!(side > 0, "tiles of at least one pixel");
+        let (w, h, t) = (self.width, self.height, side);
+        let mut tiles: Vec<TileMut<'_>> = (0..h.div_ceil(t))
+            .flat_map(|ty| {
+                (0..w.div_ceil(t)).map(move |tx| TileMut {
+                    x: (tx * t, (tx * t + t).min(w)),
+                    y: (ty * t, (ty * t + t).min(h)),
+                    rows: Vec::with_capacity(t.min(h) as usize),
+                })
             })
-            .collect()
+            .collect();
+        let width = w as usize;
+        let tiles_per_row = w.div_ceil(t) as usize;
+        let mut std_error = self.std_error.as_mut().map(|s| s.chunks_mut(width));
+        let rows = self
+            .rgb
+            .chunks_mut(width)
+            .zip(self.irradiance.chunks_mut(width));
+        for (y, (rgb, irradiance)) in rows.enumerate() {
+            let mut std_error = std_error
+                .as_mut()
+                .and_then(|s| s.next())
+                .map(|s| s.chunks_mut(t as usize));
+            let pieces = rgb
+                .chunks_mut(t as usize)
+                .zip(irradiance.chunks_mut(t as usize));
+            let first = y / t as usize * tiles_per_row;
+            for (tile, (rgb, irradiance)) in tiles[first..].iter_mut().zip(pieces) {
+                tile.rows.push(TileRow {
+                    rgb,
+                    irradiance,
+                    std_error: std_error.as_mut().and_then(|s| s.next()),
+                });
+            }
+        }
+        tiles
     }
 
     /// The RGB radiance of pixel (x, y).

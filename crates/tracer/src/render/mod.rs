@@ -190,10 +190,6 @@ pub fn render(
     let camera = scene.camera();
     let (w, h) = (camera.width(), camera.height());
     let t = config.tile;
-    let tiles: Vec<(u32, u32)> = (0..h.div_ceil(t))
-        .flat_map(|ty| (0..w.div_ceil(t)).map(move |tx| (tx * t, ty * t)))
-        .collect();
-    let total = tiles.len() as u64;
     let done = AtomicU64::new(0);
     let area_emitters: Vec<Emitter> = scene
         .emitters()
@@ -203,56 +199,52 @@ pub fn render(
         .collect();
     let by_generation = config.mode == Mode::Whitted && wavefront::applies(scene);
     let isa = Isa::selected();
-    let results: Vec<Result<(Vec<Pixel>, RayCounts), TracerError>> = tiles
-        .par_iter()
-        .map_init(wavefront::Scratch::default, |scratch, &(x0, y0)| {
-            let (x1, y1) = ((x0 + t).min(w), (y0 + t).min(h));
-            if by_generation {
-                let tile = wavefront::tile(scene, camera, config, isa, (x0, x1), (y0, y1), scratch);
-                progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-                return Ok(tile);
-            }
-            let mut cx = Context::new(scene, config, &area_emitters);
-            let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    cx.start_pixel(y as u64 * w as u64 + x as u64);
-                    let ray = camera.pixel_ray(x, y);
-                    let p = match config.mode {
-                        Mode::Raycast => raycast::pixel(&cx, &ray),
-                        Mode::Whitted => whitted::pixel(&cx, &ray),
-                        Mode::Irradiance => irradiance::pixel(&cx, &ray),
-                    }
-                    .map_err(|e| e.within(&format!("pixel ({x}, {y})")))?;
-                    pixels.push(p);
-                }
-            }
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-            Ok((pixels, cx.counts()))
-        })
-        .collect();
-    // The first error in tile order, or every tile's pixels.
-    let results = results.into_iter().collect::<Result<Vec<_>, _>>()?;
-    let rays = results
-        .iter()
-        .fold(RayCounts::default(), |sum, (_, counts)| sum.plus(*counts));
-    // Tiles into the image a band of tile rows at a time, in parallel (one
-    // thread copying the whole image held up the other).
+    // Each tile writes its pixels straight into its part of the image
+    // (a per-tile vector of pixels, copied into the image afterwards,
+    // cost an allocation per tile and fresh memory every frame).
     let mut image = Image::new(w, h, config.mode == Mode::Irradiance);
-    let tiles_per_row = w.div_ceil(t) as usize;
-    image
-        .bands_mut(t)
+    let tiles = image.tiles_mut(t);
+    let total = tiles.len() as u64;
+    let results: Vec<Result<RayCounts, TracerError>> = tiles
         .into_par_iter()
-        .zip(results.par_chunks(tiles_per_row))
-        .for_each(|(mut band, row)| {
-            for (tx, (pixels, _)) in row.iter().enumerate() {
-                let x0 = tx as u32 * t;
-                let tw = (x0 + t).min(w) - x0;
-                for (k, p) in pixels.iter().enumerate() {
-                    band.set(x0 + k as u32 % tw, k as u32 / tw, p);
+        .map_init(
+            || (wavefront::Scratch::default(), Vec::new()),
+            |(scratch, pixels), mut tile| {
+                let ((x0, x1), (y0, y1)) = (tile.x, tile.y);
+                if by_generation {
+                    let counts =
+                        wavefront::tile(scene, camera, config, isa, tile.x, tile.y, scratch);
+                    tile.set_all(scratch.pixels());
+                    progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+                    return Ok(counts);
                 }
-            }
-        });
+                let mut cx = Context::new(scene, config, &area_emitters);
+                pixels.clear();
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        cx.start_pixel(y as u64 * w as u64 + x as u64);
+                        let ray = camera.pixel_ray(x, y);
+                        let p = match config.mode {
+                            Mode::Raycast => raycast::pixel(&cx, &ray),
+                            Mode::Whitted => whitted::pixel(&cx, &ray),
+                            Mode::Irradiance => irradiance::pixel(&cx, &ray),
+                        }
+                        .map_err(|e| e.within(&format!("pixel ({x}, {y})")))?;
+                        pixels.push(p);
+                    }
+                }
+                tile.set_all(pixels);
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+                Ok(cx.counts())
+            },
+        )
+        .collect();
+    // The first error in tile order, or every tile's ray counts.
+    let rays = results
+        .into_iter()
+        .try_fold(RayCounts::default(), |sum, counts| {
+            counts.map(|c| sum.plus(c))
+        })?;
     let seconds = start.elapsed().as_secs_f64();
     Ok(Rendered {
         stats: RenderStats {

@@ -110,6 +110,15 @@ pub(super) struct Scratch {
     lights: Vec<DeltaLight>,
     nodes: Vec<Node>,
     first_irradiance: Vec<f64>,
+    /// The last tile's pixels, row by row.
+    pixels: Vec<Pixel>,
+}
+
+impl Scratch {
+    /// The pixels of the tile [`tile`] traced last, row by row.
+    pub(super) fn pixels(&self) -> &[Pixel] {
+        &self.pixels
+    }
 }
 
 /// Whether `scene` is traced here in `whitted` mode: every emitter is a
@@ -118,8 +127,8 @@ pub(super) fn applies(scene: &Scene) -> bool {
     !scene.has_area_emitters()
 }
 
-/// The pixels of the tile [x0, x1) × [y0, y1), row by row, and the rays
-/// traced for them.
+/// Traces the tile [x0, x1) × [y0, y1): its pixels, row by row, go to
+/// [`Scratch::pixels`]; returns the rays traced for them.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn tile(
     scene: &Scene,
@@ -129,19 +138,20 @@ pub(super) fn tile(
     (x0, x1): (u32, u32),
     (y0, y1): (u32, u32),
     s: &mut Scratch,
-) -> (Vec<Pixel>, RayCounts) {
+) -> RayCounts {
     let mut counts = RayCounts::default();
     s.rays.clear();
     s.ray_nodes.clear();
     s.nodes.clear();
     for y in y0..y1 {
         for x in x0..x1 {
-            s.ray_nodes.push(s.nodes.len() as u32);
-            s.nodes.push(Node::leaf(Rgb::BLACK));
+            s.ray_nodes.push(s.rays.len() as u32);
             s.rays.push(camera.pixel_ray(x, y));
         }
     }
-    let pixels = s.nodes.len();
+    let pixels = s.rays.len();
+    // Every node is written when its ray is shaded; this only sizes.
+    s.nodes.resize(pixels, Node::leaf(Rgb::BLACK));
     counts.camera = pixels as u64;
     s.first_irradiance.clear();
     s.first_irradiance.resize(pixels, 0.0);
@@ -175,14 +185,19 @@ pub(super) fn tile(
         }
         s.nodes[k].radiance = c;
     }
-    let out = (0..pixels)
-        .map(|p| Pixel {
-            rgb: s.nodes[p].radiance,
-            irradiance: s.first_irradiance[p],
-            std_error: 0.0,
-        })
-        .collect();
-    (out, counts)
+    s.pixels.clear();
+    s.pixels
+        .extend(
+            s.nodes[..pixels]
+                .iter()
+                .zip(&s.first_irradiance)
+                .map(|(node, &irradiance)| Pixel {
+                    rgb: node.radiance,
+                    irradiance,
+                    std_error: 0.0,
+                }),
+        );
+    counts
 }
 
 /// Groups the rays of the generation by the primitive they hit, misses
@@ -356,6 +371,7 @@ fn generation(
     s.next_nodes.clear();
     let deeper = depth < config.max_depth;
     let mut out = Shaded {
+        first_child: s.nodes.len() as u32,
         nodes: &mut s.nodes,
         next_rays: &mut s.next_rays,
         next_nodes: &mut s.next_nodes,
@@ -456,11 +472,17 @@ fn generation(
             }
         }
     }
+    // The next generation's nodes, written when its rays are shaded.
+    let next = s.nodes.len() + s.next_rays.len();
+    s.nodes.resize(next, Node::leaf(Rgb::BLACK));
 }
 
 /// Where shading writes: the tile's nodes and the next generation.
 struct Shaded<'a> {
-    nodes: &'a mut Vec<Node>,
+    /// The node of the next generation's first ray (its rays' nodes
+    /// follow the tile's nodes so far, in the order they are spawned).
+    first_child: u32,
+    nodes: &'a mut [Node],
     next_rays: &'a mut Vec<Ray>,
     next_nodes: &'a mut Vec<u32>,
 }
@@ -470,8 +492,7 @@ impl Shaded<'_> {
     /// generation; its node's index.
     #[inline(always)]
     fn follow(&mut self, hit: &Hit, direction: DVec3) -> u32 {
-        let child = self.nodes.len() as u32;
-        self.nodes.push(Node::leaf(Rgb::BLACK));
+        let child = self.first_child + self.next_rays.len() as u32;
         self.next_rays.push(hit.spawn_ray(direction));
         self.next_nodes.push(child);
         child
@@ -545,10 +566,9 @@ mod tests {
         for y0 in (0..h).step_by(t as usize) {
             for x0 in (0..w).step_by(t as usize) {
                 let (x1, y1) = ((x0 + t).min(w), (y0 + t).min(h));
-                let (pixels, counts) =
-                    tile(scene, camera, config, isa, (x0, x1), (y0, y1), &mut scratch);
+                let counts = tile(scene, camera, config, isa, (x0, x1), (y0, y1), &mut scratch);
                 total = total.plus(counts);
-                for (k, p) in pixels.into_iter().enumerate() {
+                for (k, &p) in scratch.pixels().iter().enumerate() {
                     let (x, y) = (x0 + k as u32 % (x1 - x0), y0 + k as u32 / (x1 - x0));
                     image[(y * w + x) as usize] = p;
                 }
