@@ -27,7 +27,6 @@ use lambert_sampling::f64::{
 
 use super::cone_mis::ConeMis;
 use super::emitter_light::{sample_cap, sample_disk, sample_polygon, sample_sky, sample_sphere};
-use super::prepared::uniform_cos;
 use super::{
     EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
 };
@@ -357,10 +356,6 @@ fn technique_batch(
         Technique::Mis(h) => mis_batch(
             h,
             receiver,
-            emitter
-                .light
-                .always_hits()
-                .then(|| emitter.uniform_radiance()),
             radiance_cos,
             light_sample,
             light_pdf,
@@ -373,17 +368,13 @@ fn technique_batch(
 /// MIS: the weighted cosine-sampled value from `u` plus the weighted
 /// light-sampled value from `v` (Veach & Guibas 1995), counted apart.
 ///
-/// `seen` is the radiance of an emitter whose light sampler covers exactly
-/// the directions that see it (a sphere's or sky cap's cone): the light
-/// density then decides whether a cosine-sampled direction sees the
-/// emitter, and a light-sampled one always does, so neither looks the
-/// emitter up (a ray–sphere test with a square root per sample, twice).
+/// (Spheres and sky caps, whose light sampler is a cone, take
+/// [`cone_mis_batch`] instead.)
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn mis_batch(
     h: Heuristic,
     receiver: &Receiver,
-    seen: Option<f64>,
     radiance_cos: impl Fn(DVec3) -> f64,
     light_sample: impl Fn(DVec2) -> Option<LightDirection>,
     light_pdf: impl Fn(DVec3) -> f64,
@@ -391,7 +382,6 @@ fn mis_batch(
     out: &mut [f64],
 ) -> PartHits {
     let frame = &{ receiver.frame };
-    let normal = receiver.normal;
     let mut hits = [0u64; 2];
     for (i, o) in out.iter_mut().enumerate() {
         let local = sample_cosine_hemisphere(block.u(i));
@@ -401,10 +391,7 @@ fn mis_batch(
         // compiler could not keep the light's data in registers and
         // reloaded it by masked gathers on every iteration.
         let p_light = light_pdf(w);
-        let l_cos = match seen {
-            Some(l) => uniform_cos(l, p_light > 0.0, w, normal),
-            None => radiance_cos(w),
-        };
+        let l_cos = radiance_cos(w);
         let weighted = h.weighted(l_cos, p_cos, p_light);
         let cosine = if p_cos > 0.0 { weighted } else { 0.0 };
         // Also branch-free, for the same reason (a direction and density
@@ -415,10 +402,7 @@ fn mis_batch(
         };
         let local = frame.to_local(s.direction);
         let p_cos = pdf_cosine_hemisphere(local);
-        let l_cos = match seen {
-            Some(l) => uniform_cos(l, true, s.direction, normal),
-            None => radiance_cos(s.direction),
-        };
+        let l_cos = radiance_cos(s.direction);
         let weighted = h.weighted(l_cos, s.pdf, p_cos);
         let light = if drawn { weighted } else { 0.0 };
         hits[0] += u64::from(cosine != 0.0);

@@ -241,30 +241,19 @@ impl PreparedEmitter {
         }
         let frame = &receiver.frame;
         let radiance_cos = |w: DVec3| self.radiance_cos(receiver, w);
-        // Where the light sampler covers exactly the directions that see
-        // the emitter (a sphere's or sky cap's cone), the light density
-        // already says whether a direction sees it: no second test.
-        let seen = self.light.always_hits().then(|| self.uniform_radiance());
         let mut cosine = 0.0;
         let local = sample_cosine_hemisphere(u);
         let w = frame.from_local(local);
         let p_cos = pdf_cosine_hemisphere(local);
         if p_cos > 0.0 {
             let p_light = self.light.pdf(w);
-            let l_cos = match seen {
-                Some(l) => uniform_cos(l, p_light > 0.0, w, receiver.normal),
-                None => radiance_cos(w),
-            };
-            cosine = h.weighted(l_cos, p_cos, p_light);
+            cosine = h.weighted(radiance_cos(w), p_cos, p_light);
         }
         let mut light = 0.0;
         if let Some(s) = self.light.sample(u2) {
             let local = frame.to_local(s.direction);
             let p_cos = pdf_cosine_hemisphere(local);
-            let l_cos = match seen {
-                Some(l) => uniform_cos(l, true, s.direction, receiver.normal),
-                None => radiance_cos(s.direction),
-            };
+            let l_cos = radiance_cos(s.direction);
             light = h.weighted(l_cos, s.pdf, p_cos);
         }
         (cosine, light)
@@ -314,18 +303,5 @@ impl PreparedEmitter {
             hits[1] += h[1];
         }
         hits
-    }
-}
-
-/// L·max(cos θ, 0) for a direction `w` known to see (`sees`) or miss a
-/// uniform emitter of radiance `l`: the same value, to the bit, as a
-/// radiance lookup that agrees on whether `w` sees it.
-#[inline(always)]
-pub(super) fn uniform_cos(l: f64, sees: bool, w: DVec3, normal: DVec3) -> f64 {
-    let cos = w.dot(normal);
-    if sees && cos > 0.0 {
-        l * cos
-    } else {
-        0.0
     }
 }
