@@ -27,7 +27,6 @@ mod splitmix;
 
 use std::cell::RefCell;
 
-use glam::DVec2;
 use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::SampleSequence;
@@ -61,7 +60,10 @@ struct Scratch {
     uy: Vec<f64>,
     vx: Vec<f64>,
     vy: Vec<f64>,
-    points: Vec<DVec2>,
+    /// A chunk's sequence points, request after request: x coordinates.
+    px: Vec<f64>,
+    /// … and y coordinates.
+    py: Vec<f64>,
 }
 
 thread_local! {
@@ -146,13 +148,18 @@ pub fn sequence_chunk<S: SampleSequence>(
     let n = (range.end - range.start) as usize;
     let dims: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
     with_scratch(n, |s| {
-        s.points.clear();
-        s.points.resize(n * dims, DVec2::ZERO);
+        // Every element is written by the fills below: no zeroing per chunk.
+        s.px.resize(n * dims, 0.0);
+        s.py.resize(n * dims, 0.0);
         isa.run(
             #[inline(always)]
             || {
-                for (request, block) in s.points.chunks_exact_mut(n).enumerate() {
-                    sequence.fill_2d(range.start, request as u64, block);
+                for (request, (x, y)) in
+                    s.px.chunks_exact_mut(n)
+                        .zip(s.py.chunks_exact_mut(n))
+                        .enumerate()
+                {
+                    sequence.fill_2d_split(range.start, request as u64, x, y);
                 }
                 let mut hits = vec![[0u64; 2]; prepared.len()];
                 let mut start = 0;
@@ -160,17 +167,20 @@ pub fn sequence_chunk<S: SampleSequence>(
                     let m = BLOCK.min(n - start);
                     let mut d = 0;
                     for (p, h) in prepared.iter().zip(hits.iter_mut()) {
-                        let at = |request: usize| &s.points[request * n + start..][..m];
-                        split(at(d), &mut s.ux[..m], &mut s.uy[..m]);
-                        if p.technique.dimensions() > 1 {
-                            split(at(d + 1), &mut s.vx[..m], &mut s.vy[..m]);
-                        }
+                        let at = |request: usize| request * n + start..request * n + start + m;
+                        // MIS's second point is request d + 1; other
+                        // techniques read only their first.
+                        let second = if p.technique.dimensions() > 1 {
+                            at(d + 1)
+                        } else {
+                            at(d)
+                        };
                         let got = p.add_batch(
                             receiver,
-                            &s.ux[..m],
-                            &s.uy[..m],
-                            &s.vx[..m],
-                            &s.vy[..m],
+                            &s.px[at(d)],
+                            &s.py[at(d)],
+                            &s.px[second.clone()],
+                            &s.py[second],
                             &mut s.values[start..start + m],
                         );
                         h[0] += got[0];
@@ -188,20 +198,12 @@ pub fn sequence_chunk<S: SampleSequence>(
     })
 }
 
-/// Points → their x and y coordinates.
-#[inline(always)]
-fn split(points: &[DVec2], x: &mut [f64], y: &mut [f64]) {
-    for ((p, xk), yk) in points.iter().zip(x.iter_mut()).zip(y.iter_mut()) {
-        *xk = p.x;
-        *yk = p.y;
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::estimation::prepare;
     use crate::strategy::{Strategy, Technique};
+    use glam::DVec2;
     use lambert_light::builtin::builtin_scenes;
     use lambert_sampling::sequence::{Sobol, Stratified};
 

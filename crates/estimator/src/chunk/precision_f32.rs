@@ -24,7 +24,6 @@
 
 use std::cell::RefCell;
 
-use glam::DVec2;
 use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::SampleSequence;
@@ -41,7 +40,8 @@ struct Scratch {
     u32s: [Vec<f32>; 4],
     /// f64 coordinates, for emitters that run in f64.
     u64s: [Vec<f64>; 4],
-    points: Vec<DVec2>,
+    /// A chunk's sequence points, request after request: x and y.
+    points: [Vec<f64>; 2],
 }
 
 thread_local! {
@@ -209,21 +209,27 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
         })
         .collect();
     with_scratch(n, |s| {
-        let mut points = std::mem::take(&mut s.points);
-        points.clear();
-        points.resize(n * dims, DVec2::ZERO);
+        let [mut px, mut py] = std::mem::take(&mut s.points);
+        // Every element is written by the fills below: no zeroing per chunk.
+        px.resize(n * dims, 0.0);
+        py.resize(n * dims, 0.0);
         let result = isa.run(
             #[inline(always)]
             || {
-                for (request, block) in points.chunks_exact_mut(n).enumerate() {
-                    sequence.fill_2d(range.start, request as u64, block);
+                for (request, (x, y)) in px
+                    .chunks_exact_mut(n)
+                    .zip(py.chunks_exact_mut(n))
+                    .enumerate()
+                {
+                    sequence.fill_2d_split(range.start, request as u64, x, y);
                 }
                 let mut hits = vec![[0u64; 2]; prepared.len()];
                 let mut start = 0;
                 while start < n {
                     let m = BLOCK.min(n - start);
                     let coords = |k: usize| SequenceBlock {
-                        points: &points,
+                        px: &px,
+                        py: &py,
                         first: firsts[k],
                         start,
                         n,
@@ -237,15 +243,16 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
                 }
             },
         );
-        s.points = points;
+        s.points = [px, py];
         result
     })
 }
 
 /// One emitter's block of a chunk's sequence points: request r is
-/// `points[(first + r)·n + start..]`.
+/// `(px, py)[(first + r)·n + start..]`.
 struct SequenceBlock<'a> {
-    points: &'a [DVec2],
+    px: &'a [f64],
+    py: &'a [f64],
     first: usize,
     start: usize,
     n: usize,
@@ -253,22 +260,27 @@ struct SequenceBlock<'a> {
 
 impl SequenceBlock<'_> {
     #[inline(always)]
-    fn at(&self, request: usize, len: usize) -> &[DVec2] {
-        &self.points[(self.first + request) * self.n + self.start..][..len]
+    fn at(&self, request: usize, len: usize) -> (&[f64], &[f64]) {
+        let from = (self.first + request) * self.n + self.start;
+        (&self.px[from..from + len], &self.py[from..from + len])
     }
 }
 
 impl Coordinates for SequenceBlock<'_> {
     #[inline(always)]
     fn f64s(&self, request: usize, x: &mut [f64], y: &mut [f64]) {
-        for ((p, xk), yk) in self.at(request, x.len()).iter().zip(x).zip(y) {
-            (*xk, *yk) = (p.x, p.y);
-        }
+        let (px, py) = self.at(request, x.len());
+        x.copy_from_slice(px);
+        y.copy_from_slice(py);
     }
     #[inline(always)]
     fn f32s(&self, request: usize, x: &mut [f32], y: &mut [f32]) {
-        for ((p, xk), yk) in self.at(request, x.len()).iter().zip(x).zip(y) {
-            (*xk, *yk) = (round_down_24(p.x), round_down_24(p.y));
+        let (px, py) = self.at(request, x.len());
+        for (xk, &p) in x.iter_mut().zip(px) {
+            *xk = round_down_24(p);
+        }
+        for (yk, &p) in y.iter_mut().zip(py) {
+            *yk = round_down_24(p);
         }
     }
 }

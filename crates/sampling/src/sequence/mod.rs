@@ -125,6 +125,39 @@ pub trait SampleSequence: Clone + Send + Sync {
         }
     }
 
+    /// [`fill_2d`](SampleSequence::fill_2d) into two coordinate arrays,
+    /// the structure of arrays the estimator's block kernels read: `x[k]`
+    /// and `y[k]` are `out[k].x` and `out[k].y`, to the bit.
+    ///
+    /// The default goes through [`fill_2d`](SampleSequence::fill_2d) in
+    /// blocks of 256; [`Sobol`] and [`Stratified`] write the arrays
+    /// directly.
+    ///
+    /// # Panics
+    /// If `x` and `y` differ in length.
+    ///
+    /// ```
+    /// use glam::DVec2;
+    /// use lambert_sampling::sequence::{SampleSequence, Stratified};
+    /// let seq = Stratified::new(64, 3).unwrap();
+    /// let (mut x, mut y) = ([0.0; 64], [0.0; 64]);
+    /// seq.fill_2d_split(0, 1, &mut x, &mut y);
+    /// let mut points = [DVec2::ZERO; 64];
+    /// seq.fill_2d(0, 1, &mut points);
+    /// assert!(points.iter().enumerate().all(|(k, p)| (p.x, p.y) == (x[k], y[k])));
+    /// ```
+    fn fill_2d_split(&self, first: u64, request: u64, x: &mut [f64], y: &mut [f64]) {
+        assert_eq!(x.len(), y.len(), "fill_2d_split: x and y differ in length");
+        let mut block = [DVec2::ZERO; 256];
+        for (b, (x, y)) in x.chunks_mut(256).zip(y.chunks_mut(256)).enumerate() {
+            let block = &mut block[..x.len()];
+            self.fill_2d(first.wrapping_add((b * 256) as u64), request, block);
+            for ((p, xk), yk) in block.iter().zip(x).zip(y) {
+                (*xk, *yk) = (p.x, p.y);
+            }
+        }
+    }
+
     /// [`fill_2d`](SampleSequence::fill_2d) in f32: `out[k]` is the value
     /// [`next_2d_f32`](SampleSequence::next_2d_f32) returns for request
     /// `request` of sample `first + k`, to the bit.

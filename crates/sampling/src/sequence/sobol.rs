@@ -309,6 +309,22 @@ impl Sobol {
         }
     }
 
+    /// The f64 values of one axis, dimension `dim`, of a block of samples
+    /// `local, local + 1, …` of the block seeded `block_seed`, from their
+    /// 32-bit values: the cursor's values, to the bit.
+    #[inline(always)]
+    fn axis_f64(&self, bits: &[u32], block_seed: u64, dim: u64, local: u32, out: &mut [f64]) {
+        if self.low_bits {
+            for (k, (o, &x)) in out.iter_mut().zip(bits).enumerate() {
+                *o = with_low_bits(x, block_seed, dim, local + k as u32);
+            }
+        } else {
+            for (o, &x) in out.iter_mut().zip(bits) {
+                *o = u32_to_f64(x);
+            }
+        }
+    }
+
     /// The 32-bit values of 2-D request `request` of samples `first …
     /// first + len − 1`, computed by the batch kernel and handed to
     /// `sink(offset, block_seed, first_local, xs, ys)` block by block
@@ -412,6 +428,24 @@ impl SampleSequence for Sobol {
                         *o = DVec2::new(u32_to_f64(x), u32_to_f64(y));
                     }
                 }
+            },
+        );
+    }
+
+    /// The batch kernel of [`fill_2d`](SampleSequence::fill_2d), written
+    /// to two arrays.
+    #[inline(always)]
+    fn fill_2d_split(&self, first: u64, request: u64, x: &mut [f64], y: &mut [f64]) {
+        assert_eq!(x.len(), y.len(), "fill_2d_split: x and y differ in length");
+        let d = 2 * request;
+        self.fill_pair_u32(
+            first,
+            request,
+            x.len(),
+            |offset, block_seed, local, xs, ys| {
+                let len = xs.len();
+                self.axis_f64(xs, block_seed, d, local, &mut x[offset..offset + len]);
+                self.axis_f64(ys, block_seed, d + 1, local, &mut y[offset..offset + len]);
             },
         );
     }
