@@ -191,7 +191,11 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// in one division each and spheres and sky caps their own MIS kernel
 /// (`Heuristic::weighted_f32`, `ConeMisF32`): the only code that changed
 /// runs for the `mis` and `mis-balance` strategies alone; the z-tests above
-/// still pass for them.)
+/// still pass for them. Re-pinned with the 2026-12 redefinition of the
+/// stratified sequence (sub-strata spread by a golden-ratio multiplier,
+/// `lambert_sampling`'s `stratified` module): its points changed by
+/// design; the Sobol and independent values did not, as the f64 digests of
+/// the estimator and the sampling crate's pinned Sobol values show.)
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -209,7 +213,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0x55b2_41de_5846_ad7a;
+const PINNED: u64 = 0xe0e0_a19a_4250_d10c;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

@@ -49,12 +49,19 @@ enum Expect {
     /// No sample hits the light: 0 hits, a one-sided interval from 0, a
     /// warning; the naive interval [0, 0] excludes the truth.
     NoHits,
-    /// Every sample equal (cosine sampling under a disk that covers all but
-    /// a sliver): a warning; the naive interval excludes the truth.
+    /// Every sample equal, or all but a few (cosine sampling under a disk
+    /// that covers all but a sliver of probability cos²α ≈ 10⁻⁶: a run of
+    /// 16 384 samples misses it with probability 1.6 %, and the stratified
+    /// points of seed 41 do, once): a few-misses warning; when every sample
+    /// is equal, the naive interval (of width 0) excludes the truth.
     AllEqual,
     /// Heavy tail (area sampling close to a large disk) whose core no
-    /// sample is expected to reach (N·q < 1): a warning; the naive interval
-    /// excludes the truth.
+    /// sample is expected to reach (N·q < 1): a warning; when no sample
+    /// reached the core, the mean falls short of the truth and the naive
+    /// interval excludes it. (A sample in the core, probability N·q = 4.9 %
+    /// on the 1000-wide disk, and the stratified points of seed 41 have
+    /// one, overshoots the truth instead, with a naive interval as wide as
+    /// the mean.)
     HeavyTail,
     /// Heavy tail whose core a few samples may reach (N·q ≈ 5): a warning
     /// (the naive interval may or may not cover, depending on whether a
@@ -262,19 +269,30 @@ fn every_strategy_and_sequence_covers_the_truth_or_says_it_cannot() {
                     }
                     Some(x) => {
                         let cause = r.warning.map(|w| w.cause);
-                        let right = match x {
+                        let (right, naive_must_exclude) = match x {
                             Expect::NoHits => {
-                                r.hits == 0 && r.ci99.0 == 0.0 && cause == Some(RareCause::NoHits)
+                                let none = r.hits == 0;
+                                (
+                                    none && r.ci99.0 == 0.0 && cause == Some(RareCause::NoHits),
+                                    true,
+                                )
                             }
-                            Expect::AllEqual => {
-                                matches!(cause, Some(RareCause::FewMisses { misses: 0 }))
+                            Expect::AllEqual => match cause {
+                                Some(RareCause::FewMisses { misses }) => (true, misses == 0),
+                                _ => (false, true),
+                            },
+                            _ => {
+                                let warned = matches!(cause, Some(RareCause::HeavyTail { .. }));
+                                (warned, r.mean < e)
                             }
-                            _ => matches!(cause, Some(RareCause::HeavyTail { .. })),
                         };
                         if !right {
                             fail("the expected warning is missing");
                         }
-                        if naive.contains(e) {
+                        // With a few misses, or a sample in a heavy tail's
+                        // core, the naive interval has width and may cover
+                        // (the variants' docs).
+                        if naive_must_exclude && naive.contains(e) {
                             fail("negative control: the naive interval covers the truth");
                         }
                     }

@@ -1,45 +1,31 @@
 //! Stratified points of many consecutive samples at once: the kernel behind
-//! [`Stratified`](super::Stratified)'s batch fills, and the keyed
-//! permutation both paths share.
+//! [`Stratified`](super::Stratified)'s batch fills, the definitions both
+//! paths share, and the keyed permutation of the later dimension pairs.
 //!
-//! Point by point, a 2-D request hashes eight splitmix64 keys (the cell
-//! permutation's, and one per column `c` and per row `r` for the
-//! multi-jitter permutations `σ_{d,c}` and `τ_{d,r}`), walks three cycle-
-//! walking permutations, divides by `nx` and hashes the jitter. Of this,
-//! per batch:
+//! A point costs, besides its cell:
 //!
-//! * the cell permutation's keys depend on `(pass, dimension)` only: hashed
-//!   once per batch ([`PermuteKeys`]);
-//! * the column and row keys depend on `(pass, dimension, c)` and
-//!   `(pass, dimension, r)`: `nx + ny` of them per dimension pair, against
-//!   two hashes of four splitmix64 rounds per sample. They are tabulated
-//!   ([`GridKeys`]) once enough samples of the pair have been asked for that
-//!   the table costs less than hashing them per sample (the rent-or-buy
-//!   rule: build after `(nx + ny)/2` samples, so the total is at most twice
-//!   the cheaper of the two), and the table is shared by every clone of the
-//!   sequence, on every thread;
-//! * `cell mod nx` and `cell / nx` use a precomputed reciprocal
-//!   ([`FastDiv`], Lemire, Kaser & Kurz 2019, "Faster remainder by direct
-//!   computation"), exact for all 32-bit operands;
-//! * the permutation's constant multiplications fold into one per round
-//!   (multiplication and masking to `w` bits commute modulo `2^32`).
+//! * two column and row shifts `s_c`, `t_r` and the jitter of both axes:
+//!   three splitmix64 finalisers ([`stream_bits`]) of counter-based streams,
+//!   which the compiler runs in vector lanes;
+//! * two range reductions by multiplication ([`reduce`]), two rotations
+//!   ([`rotate`]) and two multiplications by `1/N`.
 //!
-//! The cycle walk is split: one walk step for a whole block (branch-free,
-//! structure of arrays), then the lanes that fell outside `0..n` (fewer
-//! than half, since `2^w < 2n`; 25 to 40 % for the grids of an estimate)
-//! are listed without branches and stepped in rounds, each round listing
-//! again those still outside, so that no branch depends on a random walk
-//! length. Every value is the point-by-point value to the bit.
-//!
-//! What remains is the work the values are defined by: about 4.6
-//! permutation steps per point (`1/p` each, `p = n/2^w`: 1.34 for the
-//! cells of a 3 125 000-sample pass, 1.64 for its 2500 rows and 1250
-//! columns), of two rounds with two 32-bit multiplications each, and three
-//! splitmix64 rounds for the jitter.
+//! The cell of the first dimension pair, `(i·α + b) mod N`, is added up per
+//! lane from a block's first cell and tabulated column and row steps
+//! `k·α mod N` ([`Grid`]), with no division. The cells of later pairs come
+//! from a keyed permutation walked in blocks: one walk step for a whole
+//! block (branch-free, structure of arrays), then the lanes that fell
+//! outside `0..N` (fewer than half, since `2^w < 2N`) are listed without
+//! branches and stepped in rounds, each round listing again those still
+//! outside, so that no branch depends on a random walk length; `cell mod nx`
+//! and `cell / nx` use a precomputed reciprocal ([`FastDiv`], Lemire, Kaser
+//! & Kurz 2019, "Faster remainder by direct computation"). Every value is
+//! the point-by-point value to the bit.
 
-use std::sync::{Arc, Mutex};
+use super::{clamp_unit, hash2, mix64};
 
-use super::{clamp_unit, hash2, mix64, u64_to_f64};
+/// `2⁻³²`.
+const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
 
 /// Samples per block of the structure-of-arrays loops.
 pub(super) const BLOCK: usize = 256;
@@ -198,188 +184,369 @@ impl FastDiv {
     }
 }
 
-/// The multi-jitter permutation keys of every column (`σ_{d,c}`, permuting
-/// `0..ny`) and every row (`τ_{d,r}`, permuting `0..nx`) of one pass and
-/// dimension pair.
-#[derive(Debug)]
-pub(super) struct GridKeys {
-    sigma: Vec<PermuteKeys>,
-    tau: Vec<PermuteKeys>,
+/// SplitMix64's increment γ = 2⁶⁴/φ (odd).
+const GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// Output `j` of a SplitMix64 stream seeded by `key`: `mix64(key + γ·(j + 1))`
+/// (Steele, Lea & Flood 2014). Distinct `j` give distinct outputs (`mix64`
+/// is a bijection and `γ` is odd), one multiply-xorshift finaliser each.
+#[inline(always)]
+pub(super) fn stream_bits(key: u64, j: u64) -> u64 {
+    mix64(key.wrapping_add(GAMMA.wrapping_mul(j.wrapping_add(1))))
 }
 
-impl GridKeys {
-    /// `σ` keys `hash2(sigma_key, c)` for `c < nx`, `τ` keys
-    /// `hash2(tau_key, r)` for `r < ny`.
-    fn new(sigma_key: u64, tau_key: u64, nx: u32, ny: u32) -> Self {
-        GridKeys {
-            sigma: (0..nx)
-                .map(|c| PermuteKeys::new(hash2(sigma_key, u64::from(c))))
-                .collect(),
-            tau: (0..ny)
-                .map(|r| PermuteKeys::new(hash2(tau_key, u64::from(r))))
-                .collect(),
+/// `⌊h · m / 2⁶⁴⌋ ∈ 0..m`: a 64-bit hash reduced to `0..m` by a
+/// multiplication instead of a division (Lemire 2019, "Fast random integer
+/// generation in an interval"). Each value of `0..m` has probability within
+/// `m/2⁶⁴ ≤ 2⁻³²` (relative) of `1/m`. Written with 32 × 32-bit products
+/// so that it vectorises: `h·m = hi·m·2³² + lo·m`.
+#[inline(always)]
+pub(super) fn reduce(h: u64, m: u32) -> u32 {
+    let m = u64::from(m);
+    let low = (h & 0xffff_ffff) * m;
+    let high = (h >> 32) * m;
+    ((high + (low >> 32)) >> 32) as u32
+}
+
+/// `(x + s) mod m` for `x < m` and `s ≤ m`, without overflow and without a
+/// division.
+#[inline(always)]
+pub(super) fn rotate(x: u32, s: u32, m: u32) -> u32 {
+    let room = m - x; // ≥ 1
+    if s >= room {
+        s - room
+    } else {
+        x + s
+    }
+}
+
+/// The unit (an integer coprime to `n`) nearest `n·(√5 − 1)/2`: the
+/// multiplier of the first pair's cell order `(i·α + b) mod n`. Its
+/// multiples modulo `n` are spread as evenly as any (the three-distance
+/// theorem; Knuth, TAOCP vol. 3, §6.4, on Fibonacci hashing), so every
+/// prefix of a pass visits cells spread over the whole grid.
+fn golden_unit(n: u32) -> u32 {
+    if n <= 2 {
+        return n - 1; // 0 for n = 1, 1 for n = 2
+    }
+    let gcd = |mut a: u64, mut b: u64| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a
+    };
+    let target = (f64::from(n) * 0.618_033_988_749_894_9).round() as i64;
+    let n = i64::from(n);
+    // Terminates: 1 is a unit, at most n away.
+    (0..n)
+        .flat_map(|d| [target - d, target + d])
+        .find(|&a| a >= 1 && a < n && gcd(a as u64, n as u64) == 1)
+        .unwrap_or(1) as u32
+}
+
+/// The bijection `x ↦ x·g mod m` of `0..m`, with `g` = [`golden_unit`]`(m)`:
+/// consecutive `x` land far apart (about `0.618·m` apart, every run of
+/// them spread evenly by the three-distance theorem).
+///
+/// Tabulated for `m ≤ 2¹⁶` in a table of fixed length `2¹⁶`, so that a
+/// lookup `table[x & 0xffff]` needs no bounds check and a block's lookups
+/// compile to vector gathers (the remainder of a product costs as much as
+/// the rest of the point); computed per point beyond.
+#[derive(Clone, Debug)]
+struct Spread {
+    m: u32,
+    g: u32,
+    table: Option<std::sync::Arc<[u32; Spread::TABLE]>>,
+}
+
+impl Spread {
+    /// Entries of a table: sides up to this are tabulated.
+    const TABLE: usize = 1 << 16;
+
+    fn new(m: u32) -> Self {
+        let g = golden_unit(m);
+        let table = (m as usize <= Self::TABLE).then(|| {
+            let mut entries = vec![0u32; Self::TABLE];
+            for (x, entry) in entries.iter_mut().enumerate().take(m as usize) {
+                *entry = Self::compute(x as u32, g, m);
+            }
+            let entries: std::sync::Arc<[u32]> = entries.into();
+            // The length is TABLE by construction.
+            entries.try_into().expect("a table of TABLE entries")
+        });
+        Spread { m, g, table }
+    }
+
+    /// `x·g mod m`, computed.
+    #[inline(always)]
+    fn compute(x: u32, g: u32, m: u32) -> u32 {
+        ((u64::from(x) * u64::from(g)) % u64::from(m)) as u32
+    }
+
+    /// `x·g mod m` for `x < m`.
+    #[inline(always)]
+    fn get(&self, x: u32) -> u32 {
+        match &self.table {
+            Some(table) => table[(x & 0xffff) as usize],
+            None => Self::compute(x, self.g, self.m),
         }
     }
-}
 
-/// Tabulated [`GridKeys`] shared by the clones of a sequence, keyed by
-/// `(pass seed, dimension)`, with the count of samples served without a
-/// table (the rent-or-buy rule). Only speed depends on it, never a value.
-#[derive(Default)]
-pub(super) struct KeyCache {
-    entries: Mutex<Vec<CacheEntry>>,
-}
-
-struct CacheEntry {
-    pass_seed: u64,
-    dim: u64,
-    served: u64,
-    keys: Option<Arc<GridKeys>>,
-}
-
-/// Pairs whose keys the cache keeps (the oldest is dropped beyond).
-const CACHE_ENTRIES: usize = 32;
-
-impl std::fmt::Debug for KeyCache {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let n = self.entries.lock().map(|e| e.len()).unwrap_or(0);
-        write!(f, "KeyCache({n} pairs)")
-    }
-}
-
-impl KeyCache {
-    /// The keys of `(pass_seed, dim)` for a batch of `len` samples: the
-    /// cached table, or a new one once the samples asked for reach
-    /// `(nx + ny)/2`, or `None` (hash per sample) before.
-    fn grid_keys(
-        &self,
-        plan: &PassPlan,
-        pass_seed: u64,
-        dim: u64,
-        len: usize,
-    ) -> Option<Arc<GridKeys>> {
-        // A poisoned lock only means another thread panicked while holding
-        // it; the entries are still valid (each is written whole).
-        let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
-        let at = match entries
-            .iter()
-            .position(|e| e.pass_seed == pass_seed && e.dim == dim)
-        {
-            Some(at) => at,
-            None => {
-                if entries.len() >= CACHE_ENTRIES {
-                    entries.remove(0);
+    /// `out[k] = x[k]·g mod m` for every `k`: one branch for the block, then
+    /// a loop the compiler turns into gathers.
+    #[inline(always)]
+    fn get_block(&self, x: &[u32], out: &mut [u32]) {
+        match &self.table {
+            Some(table) => {
+                for (out, &x) in out.iter_mut().zip(x) {
+                    *out = table[(x & 0xffff) as usize];
                 }
-                entries.push(CacheEntry {
-                    pass_seed,
-                    dim,
-                    served: 0,
-                    keys: None,
-                });
-                entries.len() - 1
             }
-        };
-        let entry = &mut entries[at];
-        if entry.keys.is_none() {
-            entry.served += len as u64;
-            if 2 * entry.served >= u64::from(plan.nx) + u64::from(plan.ny) {
-                let keys = GridKeys::new(plan.sigma_key, plan.tau_key, plan.nx, plan.ny);
-                entry.keys = Some(Arc::new(keys));
+            None => {
+                for (out, &x) in out.iter_mut().zip(x) {
+                    *out = Self::compute(x, self.g, self.m);
+                }
             }
         }
-        entry.keys.clone()
     }
 }
 
-/// Everything a batch of one pass and dimension pair needs.
-pub(super) struct PassPlan {
+/// What a stratified sequence of `N` samples per pass fixes once: the grid,
+/// the first pair's multiplier `α`, `1/N`, and the column and row parts of
+/// `k·α mod N` for the lanes of a block.
+#[derive(Clone, Debug)]
+pub(super) struct Grid {
     /// Samples per pass, `N`.
     pub n: u32,
-    /// Columns of the grid.
+    /// Columns, `nx ≤ ny`.
     pub nx: u32,
-    /// Rows of the grid.
+    /// Rows, `ny = N / nx`.
     pub ny: u32,
-    /// Keys of the cell permutation.
-    pub cell: PermuteKeys,
-    /// `hash3(pass seed, d, "sigma")`: `σ_{d,c}` is keyed by `hash2(this, c)`.
-    pub sigma_key: u64,
-    /// `hash3(pass seed, d, "tau")`: `τ_{d,r}` is keyed by `hash2(this, r)`.
-    pub tau_key: u64,
-    /// `hash2(pass seed, d)`: the jitter of sample `i` is `hash2(this, i)`.
-    pub jitter_seed: u64,
+    /// The first pair's multiplier, [`golden_unit`]`(N)`.
+    alpha: u32,
+    /// `1/N`, rounded.
+    inv_n: f64,
+    /// `cell mod nx` and `cell / nx`.
+    by_nx: FastDiv,
+    /// `r·g_y mod ny` for every row `r`, with `g_y` = [`golden_unit`]`(ny)`
+    /// (empty if `ny > 2¹⁶`: computed per point instead).
+    row_spread: Spread,
+    /// `c·g_x mod nx` for every column `c`, likewise.
+    column_spread: Spread,
+    /// For `k < BLOCK`, the column step `dc = (k·α mod N) mod nx`, the row
+    /// step `dr = ⌊(k·α mod N) / nx⌋` and their spreads `dc·g_x mod nx`
+    /// and `dr·g_y mod ny`, as four arrays (not tuples) so that a block
+    /// reads them with vector loads, not gathers.
+    lane_steps: std::sync::Arc<[[u32; BLOCK]; 4]>,
 }
 
-/// The 2-D points of positions `first … first + out.len() − 1` of one pass
-/// (all `< n`), written to `out`. Inlined into the caller's instruction set.
-#[inline(always)]
-pub(super) fn fill_pass(
-    plan: &PassPlan,
-    cache: &KeyCache,
-    pass_seed: u64,
-    dim: u64,
-    first: u32,
-    out: &mut [glam::DVec2],
-) {
-    let (n, nx, ny) = (plan.n, plan.nx, plan.ny);
-    debug_assert!(u64::from(first) + out.len() as u64 <= u64::from(n));
-    let grid = cache.grid_keys(plan, pass_seed, dim, out.len());
-    let (cells, columns, rows) = (Domain::new(n), Domain::new(ny), Domain::new(nx));
-    let div = FastDiv::new(nx);
-    let mut cell = [0u32; BLOCK];
-    let mut c = [0u32; BLOCK];
-    let mut r = [0u32; BLOCK];
-    let mut sx = [0u32; BLOCK];
-    let mut sy = [0u32; BLOCK];
-    for (b, out) in out.chunks_mut(BLOCK).enumerate() {
-        let m = out.len();
-        let base = first + (b * BLOCK) as u32;
-        let cell = &mut cell[..m];
-        for (k, x) in cell.iter_mut().enumerate() {
-            *x = base + k as u32;
+impl Grid {
+    /// The grid of `n ≥ 1` samples as `nx × ny` cells.
+    pub(super) fn new(n: u32, nx: u32, ny: u32) -> Self {
+        debug_assert_eq!(u64::from(nx) * u64::from(ny), u64::from(n));
+        let alpha = golden_unit(n);
+        let by_nx = FastDiv::new(nx);
+        let (row_spread, column_spread) = (Spread::new(ny), Spread::new(nx));
+        let mut lane_steps = std::sync::Arc::new([[0u32; BLOCK]; 4]);
+        let [columns, rows, column_spreads, row_spreads] =
+            std::sync::Arc::make_mut(&mut lane_steps);
+        let mut cell = 0u64;
+        for k in 0..BLOCK {
+            (rows[k], columns[k]) = by_nx.div_rem(cell as u32);
+            column_spreads[k] = column_spread.get(columns[k]);
+            row_spreads[k] = row_spread.get(rows[k]);
+            cell = (cell + u64::from(alpha)) % u64::from(n);
         }
-        cells.permute_block(cell, |_| &plan.cell);
-        for k in 0..m {
-            // (c, r) = (cell mod nx, cell / nx).
-            let (q, rem) = div.div_rem(cell[k]);
-            (c[k], r[k]) = (rem, q);
+        Grid {
+            n,
+            nx,
+            ny,
+            alpha,
+            inv_n: 1.0 / f64::from(n),
+            by_nx,
+            row_spread,
+            column_spread,
+            lane_steps,
         }
-        sx[..m].copy_from_slice(&r[..m]);
-        sy[..m].copy_from_slice(&c[..m]);
-        match &grid {
-            Some(g) => {
-                columns.permute_block(&mut sx[..m], |k| &g.sigma[c[k] as usize]);
-                rows.permute_block(&mut sy[..m], |k| &g.tau[r[k] as usize]);
-            }
-            None => {
-                let hashed: Vec<[PermuteKeys; 2]> = (0..m)
-                    .map(|k| {
-                        [
-                            PermuteKeys::new(hash2(plan.sigma_key, u64::from(c[k]))),
-                            PermuteKeys::new(hash2(plan.tau_key, u64::from(r[k]))),
-                        ]
-                    })
-                    .collect();
-                columns.permute_block(&mut sx[..m], |k| &hashed[k][0]);
-                rows.permute_block(&mut sy[..m], |k| &hashed[k][1]);
-            }
-        }
-        for k in 0..m {
-            let kx = c[k] * ny + sx[k];
-            let ky = r[k] * nx + sy[k];
-            let bits = hash2(plan.jitter_seed, u64::from(base + k as u32));
-            out[k] = glam::DVec2::new(
-                stratum_to_unit(kx, bits, n),
-                stratum_to_unit(ky, mix64(bits), n),
-            );
+    }
+
+    /// `(cell mod nx, cell / nx)`: the column and row of a cell.
+    #[inline(always)]
+    pub(super) fn split(&self, cell: u32) -> (u32, u32) {
+        let (r, c) = self.by_nx.div_rem(cell);
+        (c, r)
+    }
+
+    /// The first pair's cell of position `i` of a pass: `(i·α + b) mod N`.
+    #[inline]
+    pub(super) fn ordered_cell(&self, i: u32, offset: u32) -> u32 {
+        // i, α, b < 2³²: i·α + b < 2⁶⁴.
+        ((u64::from(i) * u64::from(self.alpha) + u64::from(offset)) % u64::from(self.n)) as u32
+    }
+
+    /// `(k + ξ)·N⁻¹` for stratum `k < N` and jitter `ξ ∈ [0, 1)`, clamped
+    /// below 1. A multiplication by the rounded reciprocal, not a division
+    /// (which costs as much as the rest of the point on vector units): a
+    /// point within an ulp of a stratum's edge may land on the other side
+    /// of it.
+    #[inline(always)]
+    pub(super) fn unit(&self, k: u32, jitter: f64) -> f64 {
+        clamp_unit((f64::from(k) + jitter) * self.inv_n)
+    }
+
+    /// The 2-D point of position `i` of a pass in cell `(c, r)`: column
+    /// stratum `c·ny + (r·g_y + s_c) mod ny` and row stratum
+    /// `r·nx + (c·g_x + t_r) mod nx`, jittered.
+    #[inline(always)]
+    pub(super) fn point(&self, keys: &PairKeys, c: u32, r: u32, i: u32) -> glam::DVec2 {
+        let spread = [self.column_spread.get(c), self.row_spread.get(r)];
+        self.spread_point(keys, [c, r], spread, i)
+    }
+
+    /// [`Grid::point`] given the spread column and row, `c·g_x mod nx` and
+    /// `r·g_y mod ny`.
+    #[inline(always)]
+    fn spread_point(
+        &self,
+        keys: &PairKeys,
+        [c, r]: [u32; 2],
+        [column_spread, row_spread]: [u32; 2],
+        i: u32,
+    ) -> glam::DVec2 {
+        let (nx, ny) = (self.nx, self.ny);
+        let s = reduce(stream_bits(keys.sigma, u64::from(c)), ny);
+        let t = reduce(stream_bits(keys.tau, u64::from(r)), nx);
+        let kx = c * ny + rotate(row_spread, s, ny);
+        let ky = r * nx + rotate(column_spread, t, nx);
+        // One 64-bit output jitters both axes, 32 bits each: a resolution of
+        // 2⁻³²/N, finer than the 2⁻³² of a Sobol point.
+        let bits = stream_bits(keys.jitter, u64::from(i));
+        let (high, low) = ((bits >> 32) as u32, bits as u32);
+        glam::DVec2::new(
+            self.unit(kx, f64::from(high) * TWO_POW_M32),
+            self.unit(ky, f64::from(low) * TWO_POW_M32),
+        )
+    }
+}
+
+/// Tags separating the keys of one pass and dimension.
+const TAG_CELL: u64 = 0x6365_6c6c; // "cell"
+const TAG_SIGMA: u64 = 0x0073_6967_6d61; // "sigma"
+const TAG_TAU: u64 = 0x0074_6175; // "tau"
+const TAG_JITTER: u64 = 0x6a69_7474_6572; // "jitter"
+
+/// The keys of one pass and dimension `d`, all hashed from
+/// `h = hash2(pass seed, d)`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PairKeys {
+    /// The cell permutation of dimensions `d > 0`, keyed by `hash2(h, "cell")`.
+    pub cell: PermuteKeys,
+    /// The first pair's offset `b = reduce(hash2(h, "cell"), N)`.
+    pub offset: u32,
+    /// Column shifts `s_c`: output `c` of the stream keyed `hash2(h, "sigma")`.
+    pub sigma: u64,
+    /// Row shifts `t_r`: output `r` of the stream keyed `hash2(h, "tau")`.
+    pub tau: u64,
+    /// Jitter of position `i`: output `i` of the stream keyed `hash2(h, "jitter")`.
+    pub jitter: u64,
+}
+
+impl PairKeys {
+    /// The keys of dimension `dim` of the pass seeded `pass_seed`.
+    #[inline]
+    pub(super) fn new(grid: &Grid, pass_seed: u64, dim: u64) -> Self {
+        let h = hash2(pass_seed, dim);
+        let cell = hash2(h, TAG_CELL);
+        PairKeys {
+            cell: PermuteKeys::new(cell),
+            offset: reduce(cell, grid.n),
+            sigma: hash2(h, TAG_SIGMA),
+            tau: hash2(h, TAG_TAU),
+            jitter: hash2(h, TAG_JITTER),
         }
     }
 }
 
-/// `(k + ξ) / n` for stratum `k < n` and jitter bits `bits` (ξ = top 53 bits
-/// · 2^-53), clamped below 1 (the sum `k + ξ` may round up to `k + 1`).
+/// The cell of position `i` of a pass in dimension `dim`: the ordered cell
+/// for `dim = 0`, the keyed permutation's otherwise. The point-by-point
+/// definition the batch kernel reproduces.
+#[inline]
+pub(super) fn cell_of(grid: &Grid, keys: &PairKeys, dim: u64, i: u32) -> u32 {
+    if dim == 0 {
+        grid.ordered_cell(i, keys.offset)
+    } else {
+        Domain::new(grid.n).permute(i, &keys.cell)
+    }
+}
+
+/// The 2-D points of positions `first … first + len − 1` of one pass (all
+/// `< N`) in dimensions `(dim, dim + 1)`, written to `x[k]`, `y[k]` for
+/// `k < len = x.len()`. Inlined into the caller's instruction set.
 #[inline(always)]
-pub(super) fn stratum_to_unit(k: u32, bits: u64, n: u32) -> f64 {
-    clamp_unit((f64::from(k) + u64_to_f64(bits)) / f64::from(n))
+pub(super) fn fill_pass(
+    grid: &Grid,
+    keys: &PairKeys,
+    dim: u64,
+    first: u32,
+    x: &mut [f64],
+    y: &mut [f64],
+) {
+    let len = x.len();
+    debug_assert_eq!(len, y.len());
+    let (n, nx, ny) = (grid.n, grid.nx, grid.ny);
+    debug_assert!(u64::from(first) + len as u64 <= u64::from(n));
+    let cells = Domain::new(n);
+    let mut c = [0u32; BLOCK];
+    let mut r = [0u32; BLOCK];
+    let mut spread_c = [0u32; BLOCK];
+    let mut spread_r = [0u32; BLOCK];
+    for start in (0..len).step_by(BLOCK) {
+        let m = BLOCK.min(len - start);
+        let base = first + start as u32;
+        if dim == 0 {
+            // cell(base + k) = cell(base) + k·α mod N, added in column and
+            // row parts: no division per point. The spreads add up too:
+            // with c = c₀ + dc − carry·nx and r = r₀ + dr + carry (mod ny),
+            // c·g_x ≡ c₀·g_x + dc·g_x (mod nx) and
+            // r·g_y ≡ r₀·g_y + dr·g_y + carry·g_y (mod ny).
+            let (c0, r0) = grid.split(grid.ordered_cell(base, keys.offset));
+            let (spread_c0, spread_r0) = (grid.column_spread.get(c0), grid.row_spread.get(r0));
+            let row_unit = grid.row_spread.g;
+            let [columns, rows, column_spreads, row_spreads] = &*grid.lane_steps;
+            let cells = c[..m].iter_mut().zip(&mut r[..m]);
+            let spreads = spread_c[..m].iter_mut().zip(&mut spread_r[..m]);
+            let steps = columns.iter().zip(rows);
+            let step_spreads = column_spreads.iter().zip(row_spreads);
+            for (((c, r), (sc, sr)), ((&dc, &dr), (&sdc, &sdr))) in
+                cells.zip(spreads).zip(steps.zip(step_spreads))
+            {
+                let column = c0 + dc; // < 2 nx
+                let carry = u32::from(column >= nx);
+                *c = column - carry * nx;
+                *r = rotate(r0, dr + carry, ny);
+                *sc = rotate(spread_c0, sdc, nx);
+                *sr = rotate(rotate(spread_r0, sdr, ny), carry * row_unit, ny);
+            }
+        } else {
+            let cell = &mut c[..m];
+            for (k, x) in cell.iter_mut().enumerate() {
+                *x = base + k as u32;
+            }
+            cells.permute_block(cell, |_| &keys.cell);
+            for k in 0..m {
+                (c[k], r[k]) = grid.split(c[k]);
+            }
+            grid.column_spread.get_block(&c[..m], &mut spread_c[..m]);
+            grid.row_spread.get_block(&r[..m], &mut spread_r[..m]);
+        }
+        let (x, y) = (&mut x[start..start + m], &mut y[start..start + m]);
+        for k in 0..m {
+            let cell = [c[k], r[k]];
+            let spread = [spread_c[k], spread_r[k]];
+            let u = grid.spread_point(keys, cell, spread, base + k as u32);
+            (x[k], y[k]) = (u.x, u.y);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -430,19 +597,72 @@ mod tests {
         }
     }
 
-    /// The column and row keys are hashed per sample until the rent-or-buy
-    /// threshold, then tabulated: batches of 7 samples, which cross the
-    /// threshold part-way, give the cursor's values throughout.
+    /// Batches that start anywhere in a pass and cross block boundaries
+    /// give the cursor's values, on both kinds of cell order (the first
+    /// pair's and the keyed permutation's).
     #[test]
-    fn tabulating_the_keys_mid_pass_changes_no_value() {
-        let seq = Stratified::new(10_000, 3).unwrap(); // 100 × 100: threshold 100 samples
+    fn batches_give_the_cursor_values_from_any_start() {
+        let seq = Stratified::new(10_000, 3).unwrap();
         let mut cursor = seq.clone();
-        let mut batch = [glam::DVec2::ZERO; 7];
-        for start in (0..700u64).step_by(7) {
-            seq.fill_2d(start, 0, &mut batch);
-            for (k, u) in batch.iter().enumerate() {
-                cursor.start_sample(start + k as u64);
-                assert_eq!(*u, cursor.next_2d(), "sample {}", start + k as u64);
+        for request in [0u64, 1, 2] {
+            for (start, len) in [(0u64, 7usize), (250, 300), (9_990, 10), (9_000, 1_000)] {
+                let mut batch = vec![glam::DVec2::ZERO; len];
+                seq.fill_2d(start, request, &mut batch);
+                for (k, u) in batch.iter().enumerate() {
+                    cursor.start_sample(start + k as u64);
+                    for _ in 0..request {
+                        cursor.next_2d();
+                    }
+                    assert_eq!(
+                        *u,
+                        cursor.next_2d(),
+                        "request {request} sample {}",
+                        start + k as u64
+                    );
+                }
+            }
+        }
+    }
+
+    /// The first pair's multiplier is a unit near `0.618 N`, so its order
+    /// is a permutation; the lane steps are `k·α mod N` split by `nx`.
+    #[test]
+    fn golden_units_are_coprime_and_near_the_golden_section() {
+        let gcd = |mut a: u64, mut b: u64| {
+            while b != 0 {
+                (a, b) = (b, a % b);
+            }
+            a
+        };
+        for n in [1u32, 2, 3, 4, 6, 12, 16, 30, 1024, 3_125_000, u32::MAX] {
+            let a = golden_unit(n);
+            assert_eq!(gcd(u64::from(a), u64::from(n)), 1, "n {n}");
+            let off = (f64::from(a) - 0.618_033_988_749_894_9 * f64::from(n)).abs();
+            // Units are dense: within a few steps of the target for these n.
+            assert!(n <= 2 || off <= 4.0, "n {n}: α = {a}");
+        }
+        let grid = Grid::new(12, 3, 4);
+        for k in 0..BLOCK {
+            let cell = (k as u64 * u64::from(grid.alpha) % 12) as u32;
+            let [columns, rows, column_spreads, row_spreads] = &*grid.lane_steps;
+            assert_eq!([columns[k], rows[k]], [cell % 3, cell / 3], "lane {k}");
+            let spreads = [cell % 3 * golden_unit(3) % 3, cell / 3 * golden_unit(4) % 4];
+            assert_eq!([column_spreads[k], row_spreads[k]], spreads, "lane {k}");
+        }
+    }
+
+    #[test]
+    fn reduce_and_rotate_are_exact() {
+        for m in [1u32, 2, 3, 1000, u32::MAX] {
+            for h in [0u64, 1, u64::MAX, 1 << 63, 0x1234_5678_9abc_def0] {
+                let want = ((u128::from(h) * u128::from(m)) >> 64) as u32;
+                assert_eq!(reduce(h, m), want, "h {h:#x} m {m}");
+            }
+            for x in [0u32, m / 2, m - 1] {
+                for s in [0u32, 1.min(m), m / 2, m - 1, m] {
+                    let want = ((u64::from(x) + u64::from(s)) % u64::from(m)) as u32;
+                    assert_eq!(rotate(x, s, m), want, "x {x} s {s} m {m}");
+                }
             }
         }
     }

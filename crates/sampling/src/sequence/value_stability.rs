@@ -129,10 +129,16 @@ fn sobol_values_are_pinned() {
 #[test]
 fn stratified_values_are_pinned() {
     // N = 3 125 000, seed 0x1234, sample i, dimensions (0, 1), as f64 bits.
+    // Re-pinned 2026-12 when the sequence was redefined (the first pair's
+    // cells in a golden-ratio order, sub-strata spread by a golden-ratio
+    // multiplier and shifted rather than permuted, 32-bit jitters; module
+    // docs of `stratified.rs`): a chosen change of values, which keeps both
+    // stratification properties (tests in `stratified.rs`), has equal or
+    // smaller error on the integrands measured there, and costs under half.
     let pinned: [(u64, u64, u64); 3] = [
-        (0, 0x3fd6_0ddb_65b0_8a7c, 0x3fd7_d8d8_60bf_003f),
-        (1, 0x3fe7_3eca_eaf5_bbf3, 0x3fef_14ea_5205_180a),
-        (2_000_000, 0x3fe4_1e65_fd4a_165b, 0x3fcc_a7ff_3712_cf7a),
+        (0, 0x3fee_19f5_0ee9_7ec2, 0x3fe1_79f7_4f96_f4b6),
+        (1, 0x3f9a_8455_fcf3_a6ec, 0x3fc5_0cbe_85f1_7210),
+        (2_000_000, 0x3fee_1798_f810_7ea8, 0x3f9a_fe66_47ce_550d),
     ];
     let mut s = Stratified::new(3_125_000, 0x1234).unwrap();
     for (i, x, y) in pinned {
@@ -141,11 +147,11 @@ fn stratified_values_are_pinned() {
         assert_eq!((u.x.to_bits(), u.y.to_bits()), (x, y), "sample {i}");
     }
     let digests: [u64; 5] = [
-        0x6d25_ff50_8a68_3c4d,
-        0x4a3f_72b2_3c39_bcfd,
-        0x7dae_7fa4_a614_0757,
-        0xa472_4491_0715_28c4,
-        0x29ff_6374_b989_ef29,
+        0x882a_4303_a119_52a4,
+        0x5088_aeff_8069_a12f,
+        0x251d_91f9_aea6_eb00,
+        0x5918_89c1_ff19_5029,
+        0x323d_ad95_1fa1_8608,
     ];
     for ((n, seed), want) in STRATIFIED_CONFIGS.into_iter().zip(digests) {
         let seq = Stratified::new(n, seed).unwrap();
