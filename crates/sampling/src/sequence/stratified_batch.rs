@@ -248,32 +248,26 @@ fn golden_unit(n: u32) -> u32 {
 /// consecutive `x` land far apart (about `0.618·m` apart, every run of
 /// them spread evenly by the three-distance theorem).
 ///
-/// Tabulated for `m ≤ 2¹⁶` in a table of fixed length `2¹⁶`, so that a
-/// lookup `table[x & 0xffff]` needs no bounds check and a block's lookups
-/// compile to vector gathers (the remainder of a product costs as much as
-/// the rest of the point); computed per point beyond.
+/// Tabulated for `m ≤ 2¹⁶` (`m` entries: a stratified sequence of `N`
+/// samples builds `√N`-sized tables, and the study builds thousands of
+/// short sequences), so that a block's lookups compile to vector gathers
+/// (the remainder of a product costs as much as the rest of the point);
+/// computed per point beyond.
 #[derive(Clone, Debug)]
 struct Spread {
     m: u32,
     g: u32,
-    table: Option<std::sync::Arc<[u32; Spread::TABLE]>>,
+    table: Option<std::sync::Arc<[u32]>>,
 }
 
 impl Spread {
-    /// Entries of a table: sides up to this are tabulated.
-    const TABLE: usize = 1 << 16;
+    /// Sides up to this are tabulated.
+    const TABULATED: u32 = 1 << 16;
 
     fn new(m: u32) -> Self {
         let g = golden_unit(m);
-        let table = (m as usize <= Self::TABLE).then(|| {
-            let mut entries = vec![0u32; Self::TABLE];
-            for (x, entry) in entries.iter_mut().enumerate().take(m as usize) {
-                *entry = Self::compute(x as u32, g, m);
-            }
-            let entries: std::sync::Arc<[u32]> = entries.into();
-            // The length is TABLE by construction.
-            entries.try_into().expect("a table of TABLE entries")
-        });
+        let table =
+            (m <= Self::TABULATED).then(|| (0..m).map(|x| Self::compute(x, g, m)).collect());
         Spread { m, g, table }
     }
 
@@ -287,7 +281,10 @@ impl Spread {
     #[inline(always)]
     fn get(&self, x: u32) -> u32 {
         match &self.table {
-            Some(table) => table[(x & 0xffff) as usize],
+            // x < m = the table's length: `unwrap_or` is never taken, and
+            // unlike indexing it needs no panic path, so the compiler can
+            // gather a block of lookups.
+            Some(table) => table.get(x as usize).copied().unwrap_or(0),
             None => Self::compute(x, self.g, self.m),
         }
     }
@@ -299,7 +296,7 @@ impl Spread {
         match &self.table {
             Some(table) => {
                 for (out, &x) in out.iter_mut().zip(x) {
-                    *out = table[(x & 0xffff) as usize];
+                    *out = table.get(x as usize).copied().unwrap_or(0);
                 }
             }
             None => {
