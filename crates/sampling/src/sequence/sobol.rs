@@ -343,9 +343,14 @@ impl Sobol {
             // Up to the end of this block of 2^32 indices.
             let room = ((1u64 << 32) - u64::from(local)).min((len - done) as u64) as usize;
             let plan = self.pair_plan(block_seed, request);
-            sobol_batch::fill_pair(&plan, local, room, |offset, xs, ys| {
-                sink(done + offset, block_seed, local + offset as u32, xs, ys);
-            });
+            // Inlined, so the sink runs in the caller's instruction set.
+            sobol_batch::fill_pair(
+                &plan,
+                local,
+                room,
+                #[inline(always)]
+                |offset, xs, ys| sink(done + offset, block_seed, local + offset as u32, xs, ys),
+            );
             done += room;
         }
     }
@@ -442,6 +447,7 @@ impl SampleSequence for Sobol {
             first,
             request,
             x.len(),
+            #[inline(always)]
             |offset, block_seed, local, xs, ys| {
                 let len = xs.len();
                 self.axis_f64(xs, block_seed, d, local, &mut x[offset..offset + len]);
