@@ -203,6 +203,22 @@ impl Stratified {
     }
 }
 
+impl Stratified {
+    /// Request `request` of samples `first..first + out.len()` from the
+    /// batch kernel, block by block, each point made by `make(x, y)`.
+    #[inline(always)]
+    fn fill_made<T>(&self, first: u64, request: u64, out: &mut [T], make: impl Fn(f64, f64) -> T) {
+        let (mut x, mut y) = ([0.0; BLOCK], [0.0; BLOCK]);
+        for (b, out) in out.chunks_mut(BLOCK).enumerate() {
+            let (x, y) = (&mut x[..out.len()], &mut y[..out.len()]);
+            self.fill_points(first.wrapping_add((b * BLOCK) as u64), request, x, y);
+            for (o, (&x, &y)) in out.iter_mut().zip(x.iter().zip(&*y)) {
+                *o = make(x, y);
+            }
+        }
+    }
+}
+
 impl SampleSequence for Stratified {
     fn start_sample(&mut self, index: u64) {
         let n = u64::from(self.grid.n);
@@ -242,14 +258,7 @@ impl SampleSequence for Stratified {
     /// set (the estimator calls it inside `Isa::run`).
     #[inline(always)]
     fn fill_2d(&self, first: u64, request: u64, out: &mut [DVec2]) {
-        let (mut x, mut y) = ([0.0; BLOCK], [0.0; BLOCK]);
-        for (b, out) in out.chunks_mut(BLOCK).enumerate() {
-            let (x, y) = (&mut x[..out.len()], &mut y[..out.len()]);
-            self.fill_points(first.wrapping_add((b * BLOCK) as u64), request, x, y);
-            for (o, (&x, &y)) in out.iter_mut().zip(x.iter().zip(&*y)) {
-                *o = DVec2::new(x, y);
-            }
-        }
+        self.fill_made(first, request, out, DVec2::new);
     }
 
     /// The batch kernel of [`fill_2d`](SampleSequence::fill_2d), written
@@ -261,14 +270,9 @@ impl SampleSequence for Stratified {
     }
 
     fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {
-        let (mut x, mut y) = ([0.0; BLOCK], [0.0; BLOCK]);
-        for (b, out) in out.chunks_mut(BLOCK).enumerate() {
-            let (x, y) = (&mut x[..out.len()], &mut y[..out.len()]);
-            self.fill_points(first.wrapping_add((b * BLOCK) as u64), request, x, y);
-            for (o, (&x, &y)) in out.iter_mut().zip(x.iter().zip(&*y)) {
-                *o = Vec2::new(f64_to_f32_unit(x), f64_to_f32_unit(y));
-            }
-        }
+        self.fill_made(first, request, out, |x, y| {
+            Vec2::new(f64_to_f32_unit(x), f64_to_f32_unit(y))
+        });
     }
 }
 

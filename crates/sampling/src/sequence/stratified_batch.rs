@@ -8,7 +8,11 @@
 //!   three splitmix64 finalisers ([`stream_bits`]) of counter-based streams,
 //!   which the compiler runs in vector lanes;
 //! * two range reductions by multiplication ([`reduce`]), two rotations
-//!   ([`rotate`]) and two multiplications by `1/N`.
+//!   ([`rotate`]) and two multiplications by `1/N`;
+//! * the spread sub-strata `r·g_y mod ny` and `c·g_x mod nx`: for the first
+//!   pair, added up per lane like its cells (tabulated spreads of the lane
+//!   steps, three more rotations); for later pairs, looked up in a table of
+//!   `nx` or `ny` entries (vector gathers).
 //!
 //! The cell of the first dimension pair, `(i·α + b) mod N`, is added up per
 //! lane from a block's first cell and tabulated column and row steps
