@@ -26,7 +26,7 @@ use std::cell::RefCell;
 
 use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
-use lambert_sampling::sequence::SampleSequence;
+use lambert_sampling::sequence::{round_down_24, SampleSequence};
 
 use super::{ChunkResult, McgStream, SplitMixStream, BLOCK};
 use crate::statistics::Estimate;
@@ -180,12 +180,6 @@ pub fn independent_chunk_f32(
             },
         )
     })
-}
-
-/// `u` rounded down to 24 bits (module docs): ⌊2²⁴ u⌋/2²⁴ for u ∈ [0, 1).
-#[inline(always)]
-pub fn round_down_24(u: f64) -> f32 {
-    ((u * 16_777_216.0) as u32) as f32 * (1.0 / 16_777_216.0)
 }
 
 /// [`super::sequence_chunk`] in f32 (module docs): the sequence's points

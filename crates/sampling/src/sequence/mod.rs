@@ -88,7 +88,7 @@ pub trait SampleSequence: Clone + Send + Sync {
     ///
     /// The default truncates [`next_1d`](SampleSequence::next_1d) to 24 bits.
     fn next_1d_f32(&mut self) -> f32 {
-        f64_to_f32_unit(self.next_1d())
+        round_down_24(self.next_1d())
     }
 
     /// Fills `out[k]` with 2-D request number `request` of sample
@@ -200,12 +200,27 @@ pub(crate) fn u32_to_f32(x: u32) -> f32 {
     (x >> 8) as f32 * TWO_POW_M24_F32
 }
 
-/// Truncates `x ∈ [0, 1)` to 24 bits, `⌊x · 2^24⌋ · 2^-24`: exact, and never 1
-/// (rounding to nearest, `x as f32`, gives 1 for `x > 1 − 2^-25`).
-#[inline]
-pub(crate) fn f64_to_f32_unit(x: f64) -> f32 {
-    let k = (x * 16_777_216.0) as u32; // saturating; x < 1 gives k < 2^24
-    (k as f32 * TWO_POW_M24_F32).min(lambert_geometry::precision::f32::ONE_MINUS_EPSILON)
+/// `x ∈ [0, 1)` rounded down to 24 bits, `⌊x · 2^24⌋ · 2^-24`: exact, and
+/// never 1 (rounding to nearest, `x as f32`, gives 1 for `x > 1 − 2^-25`).
+/// Inputs outside `[0, 1)` are clamped to `[0, 1 − 2^-24]`.
+///
+/// Written with `floor` and clamps in f64 rather than a conversion to an
+/// integer: Rust's saturating float-to-integer cast has no vector
+/// instruction, so a loop of those stays scalar (it was a quarter of an
+/// f32 stratified estimate), while this one vectorises. Every step is
+/// exact: scaling by a power of two, `floor`, and the final cast of
+/// `k · 2^-24` with `k < 2^24`, which f32 represents.
+///
+/// ```
+/// use lambert_sampling::sequence::round_down_24;
+/// assert_eq!(round_down_24(0.5), 0.5);
+/// assert_eq!(round_down_24(1.0 - 1e-12), 1.0 - 1.0 / 16_777_216.0);
+/// assert_eq!(round_down_24(1.5e-8), 0.0);
+/// ```
+#[inline(always)]
+pub fn round_down_24(x: f64) -> f32 {
+    const SCALE: f64 = 16_777_216.0;
+    ((x * SCALE).floor().clamp(0.0, SCALE - 1.0) * (1.0 / SCALE)) as f32
 }
 
 /// Clamps a computed value to `[0, 1)` (for sums that may round up to 1).
@@ -247,15 +262,33 @@ mod tests {
         assert!(u64_to_f64(u64::MAX) < 1.0);
         assert!(u32_to_f32(u32::MAX) < 1.0);
         assert_eq!(u32_to_f32(u32::MAX), 1.0 - f32::EPSILON / 2.0);
-        assert!(f64_to_f32_unit(ONE_MINUS_EPSILON) < 1.0);
-        assert!(f64_to_f32_unit(1.0) < 1.0);
+        assert!(round_down_24(ONE_MINUS_EPSILON) < 1.0);
+        assert!(round_down_24(1.0) < 1.0);
         // Plain rounding would give 1.0 here: the reason for truncation.
         assert_eq!(ONE_MINUS_EPSILON as f32, 1.0);
         assert_eq!(clamp_unit(1.0), ONE_MINUS_EPSILON);
         assert_eq!(u32_to_f64(0), 0.0);
         assert_eq!(u32_to_f32(0), 0.0);
-        assert_eq!(f64_to_f32_unit(0.0), 0.0);
+        assert_eq!(round_down_24(0.0), 0.0);
         assert_eq!(u32_to_f64(0x8000_0000), 0.5);
+    }
+
+    /// The floor form gives the 24-bit truncation `⌊2²⁴x⌋·2⁻²⁴` that an
+    /// integer cast gives, on every 32-bit fraction's neighbourhood (each
+    /// `u32_to_f64` value and the f64 values one ulp either side, where a
+    /// wrong rounding would show) over a stride through `u32`, and on the
+    /// ends; and clamps what lies outside `[0, 1)`.
+    #[test]
+    fn round_down_24_truncates_exactly() {
+        let by_cast = |x: f64| ((x * 16_777_216.0) as u32).min((1 << 24) - 1) as f32 / 16_777_216.0;
+        for k in (0..=u32::MAX).step_by(9_973).chain([u32::MAX, 255, 256, 257]) {
+            let x = u32_to_f64(k);
+            for x in [x, x.next_up(), x.next_down().max(0.0)] {
+                assert_eq!(round_down_24(x).to_bits(), by_cast(x).to_bits(), "x = {x:e}");
+            }
+        }
+        assert_eq!(round_down_24(-0.25), 0.0);
+        assert_eq!(round_down_24(7.0), 1.0 - 1.0 / 16_777_216.0);
     }
 
     #[test]

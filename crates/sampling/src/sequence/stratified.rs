@@ -85,7 +85,7 @@
 //! `2^-24` above a stratum boundary `k/N` may fall just below it in f32.
 
 use super::stratified_batch::{cell_of, fill_pass, stream_bits, Grid, PairKeys, BLOCK};
-use super::{f64_to_f32_unit, hash2, u64_to_f64, SampleSequence};
+use super::{round_down_24, hash2, u64_to_f64, SampleSequence};
 use crate::SamplingError;
 use glam::{DVec2, Vec2};
 
@@ -250,7 +250,7 @@ impl SampleSequence for Stratified {
 
     fn next_2d_f32(&mut self) -> Vec2 {
         let u = self.next_2d();
-        Vec2::new(f64_to_f32_unit(u.x), f64_to_f32_unit(u.y))
+        Vec2::new(round_down_24(u.x), round_down_24(u.y))
     }
 
     /// The batch kernel of `stratified_batch.rs`: the same values as the
@@ -271,7 +271,7 @@ impl SampleSequence for Stratified {
 
     fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {
         self.fill_made(first, request, out, |x, y| {
-            Vec2::new(f64_to_f32_unit(x), f64_to_f32_unit(y))
+            Vec2::new(round_down_24(x), round_down_24(y))
         });
     }
 }
@@ -419,10 +419,10 @@ mod tests {
         };
         let x = unit(n - 1, u64::MAX, n);
         assert!(x < 1.0);
-        assert!(f64_to_f32_unit(x) < 1.0);
+        assert!(round_down_24(x) < 1.0);
         for n in [1u32, 2, 3, 1 << 24, (1 << 24) + 1] {
             let x = unit(n - 1, u64::MAX, n);
-            assert!(x < 1.0 && f64_to_f32_unit(x) < 1.0, "n {n}");
+            assert!(x < 1.0 && round_down_24(x) < 1.0, "n {n}");
         }
         let mut s = Stratified::new(u32::MAX, 8).unwrap();
         for i in [0u64, 1, u64::from(u32::MAX) - 1, u64::MAX] {
