@@ -3,14 +3,18 @@
 //! cursor (`start_sample` then `next_2d`, the path the estimator used to
 //! take) against the batch fill (`fill_2d`, one dimension pair for the
 //! whole chunk). Both give the same values to the bit; the ratio is the
-//! speed-up of the batch kernels. Stratified uses N = 3 125 000, one
-//! replicate of a 5·10⁷-sample estimate (a 1250 × 2500 grid).
+//! speed-up of the batch kernels. The `split` rows are the fills the
+//! estimator calls (`fill_2d_split`, and `fill_2d_split_f32` for its f32
+//! path), run inside `Isa::run` as the estimator runs them. Stratified
+//! uses N = 3 125 000, one replicate of a 5·10⁷-sample estimate (a
+//! 1250 × 2500 grid).
 
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{DVec2, Vec2};
 use lambert_benches::config;
+use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::{Independent, SampleSequence, Sobol, Stratified};
 
 /// Samples per chunk, as in the estimator.
@@ -51,6 +55,35 @@ fn bench_sequence<S: SampleSequence>(c: &mut Criterion, name: &str, seq: S) {
             })
         });
     }
+    // As the estimator reads them: structure of arrays, inside
+    // `Isa::run` (the widest set this processor has), f64 and f32.
+    let isa = Isa::selected();
+    g.bench_function(format!("{name} request 0 split {isa}"), |b| {
+        let (mut x, mut y) = (vec![0.0f64; CHUNK], vec![0.0f64; CHUNK]);
+        let mut chunk = 0u64;
+        b.iter(|| {
+            chunk = (chunk + 1) % CHUNKS;
+            let first = chunk * CHUNK as u64;
+            isa.run(
+                #[inline(always)]
+                || seq.fill_2d_split(first, 0, &mut x, &mut y),
+            );
+            black_box((&x, &y));
+        })
+    });
+    g.bench_function(format!("{name} request 0 split f32 {isa}"), |b| {
+        let (mut x, mut y) = (vec![0.0f32; CHUNK], vec![0.0f32; CHUNK]);
+        let mut chunk = 0u64;
+        b.iter(|| {
+            chunk = (chunk + 1) % CHUNKS;
+            let first = chunk * CHUNK as u64;
+            isa.run(
+                #[inline(always)]
+                || seq.fill_2d_split_f32(first, 0, &mut x, &mut y),
+            );
+            black_box((&x, &y));
+        })
+    });
     g.bench_function(format!("{name} request 0 batch f32"), |b| {
         let mut out = vec![Vec2::ZERO; CHUNK];
         let mut chunk = 0u64;

@@ -195,7 +195,11 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// stratified sequence (sub-strata spread by a golden-ratio multiplier,
 /// `lambert_sampling`'s `stratified` module): its points changed by
 /// design; the Sobol and independent values did not, as the f64 digests of
-/// the estimator and the sampling crate's pinned Sobol values show.)
+/// the estimator and the sampling crate's pinned Sobol values show. And
+/// when the stratified shifts and jitters became 32-bit hashes, the
+/// digest was 0xe0e0_a19a_4250_d10c; again only stratified points moved.
+/// The f32 path's native fill of sequence points moved nothing: it gives
+/// the f64 points rounded down to 24 bits, to the bit, as before.)
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -213,7 +217,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0xe0e0_a19a_4250_d10c;
+const PINNED: u64 = 0x3e42_7f3e_63d6_7a54;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

@@ -458,9 +458,15 @@ fn the_spread_of_z_is_honest_for_every_estimator_and_one_miscalibrated_estimator
 /// are Bin(K, 0.01) if the intervals are honest; one two-sided exact
 /// binomial band per (strategy, sequence), Šidák-corrected over the 18.
 /// The coverage figures are printed. Negative control: the same intervals
-/// narrowed to 95 % ones (half-width × z₀.₉₇₅/z₀.₉₉₅, or the t(15)
+/// narrowed to 90 % ones (half-width × z₀.₉₅/z₀.₉₉₅, or the t(15)
 /// quantiles' ratio) must fall outside the band of every strategy ×
-/// sequence; its power P(Bin(K, 0.05) outside the band) is stated.
+/// sequence; its power P(Bin(K, 0.10) outside the band) is stated. (The
+/// control narrowed to 95 % until the stratified points' 32-bit hashes of
+/// 2026-12: where the intervals are conservative, mis-balance × stratified
+/// at 99 % covered 0.9954, its 95 % intervals missed only 25 of 1728,
+/// inside the band 5..=33, and mis-balance × Sobol 34, at its edge. The
+/// narrower control keeps the power without depending on exact
+/// calibration, as the Σz² test's 90 % control does.)
 /// A strategy with too few sampled estimators for that power in some
 /// sequence (`projected`, exact on every light but disks, where it samples
 /// by solid angle like `light`) is judged with its sequences pooled: each
@@ -470,17 +476,17 @@ fn coverage_per_strategy_and_sequence_is_within_its_binomial_band() {
     let all = &intervals().tested;
     let mut cells: BTreeMap<(String, String), (usize, usize, usize)> = BTreeMap::new();
     for i in all {
-        let q95 = match i.sequence {
-            SequenceKind::Independent => Normal::standard().inverse_cdf(0.975),
+        let q90 = match i.sequence {
+            SequenceKind::Independent => Normal::standard().inverse_cdf(0.95),
             _ => StudentsT::new(0.0, 1.0, (RQMC_REPLICATES - 1) as f64)
                 .unwrap()
-                .inverse_cdf(0.975),
+                .inverse_cdf(0.95),
         };
         let cell = cells
             .entry((i.strategy.to_string(), i.sequence.to_string()))
             .or_default();
         cell.0 += i.covered(1.0);
-        cell.1 += i.covered(q95 / quantile(i.sequence));
+        cell.1 += i.covered(q90 / quantile(i.sequence));
         cell.2 += i.errors.len();
     }
     // Judged at the Šidák level over the unpooled cells: pooling only
@@ -490,7 +496,7 @@ fn coverage_per_strategy_and_sequence_is_within_its_binomial_band() {
         .iter()
         .filter(|(_, &(_, _, total))| {
             let (lo, hi) = binomial_band(total as u64, 0.01, unpooled_alpha);
-            let power: f64 = binomial_pmf(total as u64, 0.05)
+            let power: f64 = binomial_pmf(total as u64, 0.10)
                 .iter()
                 .enumerate()
                 .filter(|(x, _)| !(lo..=hi).contains(&(*x as u64)))
@@ -515,12 +521,12 @@ fn coverage_per_strategy_and_sequence_is_within_its_binomial_band() {
             });
     let alpha = sidak_level(FAMILY_ALPHA, cells.len());
     let mut failures = Vec::new();
-    for ((strategy, sequence), (covered, covered95, total)) in &cells {
+    for ((strategy, sequence), (covered, covered90, total)) in &cells {
         let total = *total as u64;
         let (lo, hi) = binomial_band(total, 0.01, alpha);
         let misses = total - *covered as u64;
-        let control = total - *covered95 as u64;
-        let pmf = binomial_pmf(total, 0.05);
+        let control = total - *covered90 as u64;
+        let pmf = binomial_pmf(total, 0.10);
         let power: f64 = pmf
             .iter()
             .enumerate()
@@ -529,7 +535,7 @@ fn coverage_per_strategy_and_sequence_is_within_its_binomial_band() {
             .sum();
         eprintln!(
             "{strategy:>18} × {sequence:<11}: coverage {:.4} ({misses} misses of {total}, band {lo}..={hi}); \
-             control 95 %: {control} misses, power {power:.6}",
+             control 90 %: {control} misses, power {power:.6}",
             *covered as f64 / total as f64
         );
         assert!(
@@ -543,7 +549,7 @@ fn coverage_per_strategy_and_sequence_is_within_its_binomial_band() {
         }
         assert!(
             !(lo..=hi).contains(&control),
-            "{strategy} × {sequence}: 95 % intervals passed ({control} misses)"
+            "{strategy} × {sequence}: 90 % intervals passed ({control} misses)"
         );
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

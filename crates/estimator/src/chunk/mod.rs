@@ -31,8 +31,8 @@ use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::SampleSequence;
 
-pub use mcg::McgStream;
 pub use lambert_sampling::sequence::round_down_24;
+pub use mcg::McgStream;
 pub use precision_f32::{independent_chunk_f32, sequence_chunk_f32};
 pub use splitmix::SplitMixStream;
 

@@ -42,6 +42,8 @@ struct Scratch {
     u64s: [Vec<f64>; 4],
     /// A chunk's sequence points, request after request: x and y.
     points: [Vec<f64>; 2],
+    /// The same in f32, when every emitter runs in f32.
+    points_f32: [Vec<f32>; 2],
 }
 
 thread_local! {
@@ -62,12 +64,14 @@ fn with_scratch<R>(n: usize, f: impl FnOnce(&mut Scratch) -> R) -> R {
     })
 }
 
-/// Where one emitter's coordinates for a block come from.
+/// Where one emitter's coordinates for a block come from. Each call
+/// returns the block's x and y: either `x` and `y` filled, or slices the
+/// source already holds (no copy).
 trait Coordinates {
     /// Request `request` (0: u, 1: MIS's v) of this block, in f64.
-    fn f64s(&self, request: usize, x: &mut [f64], y: &mut [f64]);
+    fn f64s<'a>(&'a self, request: usize, x: &'a mut [f64], y: &'a mut [f64]) -> [&'a [f64]; 2];
     /// The same rounded down to 24 bits.
-    fn f32s(&self, request: usize, x: &mut [f32], y: &mut [f32]);
+    fn f32s<'a>(&'a self, request: usize, x: &'a mut [f32], y: &'a mut [f32]) -> [&'a [f32]; 2];
 }
 
 /// Evaluates one block of every emitter into `values`, in the emitters'
@@ -92,19 +96,23 @@ fn block<C: Coordinates>(
         let got = match &f32s[k] {
             Some(q) => {
                 let [ux, uy, vx, vy] = &mut s.u32s;
-                c.f32s(0, &mut ux[..m], &mut uy[..m]);
-                if mis {
-                    c.f32s(1, &mut vx[..m], &mut vy[..m]);
-                }
-                q.add_batch(&ux[..m], &uy[..m], &vx[..m], &vy[..m], values)
+                let [ux, uy] = c.f32s(0, &mut ux[..m], &mut uy[..m]);
+                let [vx, vy] = if mis {
+                    c.f32s(1, &mut vx[..m], &mut vy[..m])
+                } else {
+                    [&vx[..m], &vy[..m]]
+                };
+                q.add_batch(ux, uy, vx, vy, values)
             }
             None => {
                 let [ux, uy, vx, vy] = &mut s.u64s;
-                c.f64s(0, &mut ux[..m], &mut uy[..m]);
-                if mis {
-                    c.f64s(1, &mut vx[..m], &mut vy[..m]);
-                }
-                p.add_batch(receiver, &ux[..m], &uy[..m], &vx[..m], &vy[..m], values)
+                let [ux, uy] = c.f64s(0, &mut ux[..m], &mut uy[..m]);
+                let [vx, vy] = if mis {
+                    c.f64s(1, &mut vx[..m], &mut vy[..m])
+                } else {
+                    [&vx[..m], &vy[..m]]
+                };
+                p.add_batch(receiver, ux, uy, vx, vy, values)
             }
         };
         h[0] += got[0];
@@ -123,14 +131,16 @@ struct StreamBlock<'a> {
 
 impl Coordinates for StreamBlock<'_> {
     #[inline(always)]
-    fn f64s(&self, request: usize, x: &mut [f64], y: &mut [f64]) {
+    fn f64s<'a>(&'a self, request: usize, x: &'a mut [f64], y: &'a mut [f64]) -> [&'a [f64]; 2] {
         self.stream
             .fill_2d(self.first + request as u64 * self.n, x, y);
+        [x, y]
     }
     #[inline(always)]
-    fn f32s(&self, request: usize, x: &mut [f32], y: &mut [f32]) {
+    fn f32s<'a>(&'a self, request: usize, x: &'a mut [f32], y: &'a mut [f32]) -> [&'a [f32]; 2] {
         self.stream32
             .fill_2d_f32(self.first + request as u64 * self.n, x, y);
+        [x, y]
     }
 }
 
@@ -183,7 +193,10 @@ pub fn independent_chunk_f32(
 }
 
 /// [`super::sequence_chunk`] in f32 (module docs): the sequence's points
-/// for samples `range`, each f32 emitter's rounded down to 24 bits.
+/// for samples `range`, each f32 emitter's rounded down to 24 bits. When
+/// every emitter runs in f32 the points are filled in f32 directly
+/// ([`SampleSequence::fill_2d_split_f32`], the same values), half the
+/// memory and no rounding pass; otherwise in f64 and rounded per block.
 pub fn sequence_chunk_f32<S: SampleSequence>(
     prepared: &[PreparedEmitter],
     f32s: &[Option<PreparedEmitterF32>],
@@ -202,28 +215,43 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
             Some(first)
         })
         .collect();
+    let all_f32 = f32s.iter().all(Option::is_some);
     with_scratch(n, |s| {
         let [mut px, mut py] = std::mem::take(&mut s.points);
+        let [mut qx, mut qy] = std::mem::take(&mut s.points_f32);
         // Every element is written by the fills below: no zeroing per chunk.
-        px.resize(n * dims, 0.0);
-        py.resize(n * dims, 0.0);
+        let len = n * dims;
+        if all_f32 {
+            qx.resize(len, 0.0);
+            qy.resize(len, 0.0);
+        } else {
+            px.resize(len, 0.0);
+            py.resize(len, 0.0);
+        }
         let result = isa.run(
             #[inline(always)]
             || {
-                for (request, (x, y)) in px
-                    .chunks_exact_mut(n)
-                    .zip(py.chunks_exact_mut(n))
-                    .enumerate()
-                {
-                    sequence.fill_2d_split(range.start, request as u64, x, y);
+                if all_f32 {
+                    let requests = qx.chunks_exact_mut(n).zip(qy.chunks_exact_mut(n));
+                    for (request, (x, y)) in requests.enumerate() {
+                        sequence.fill_2d_split_f32(range.start, request as u64, x, y);
+                    }
+                } else {
+                    let requests = px.chunks_exact_mut(n).zip(py.chunks_exact_mut(n));
+                    for (request, (x, y)) in requests.enumerate() {
+                        sequence.fill_2d_split(range.start, request as u64, x, y);
+                    }
                 }
                 let mut hits = vec![[0u64; 2]; prepared.len()];
                 let mut start = 0;
                 while start < n {
                     let m = BLOCK.min(n - start);
                     let coords = |k: usize| SequenceBlock {
-                        px: &px,
-                        py: &py,
+                        points: if all_f32 {
+                            Points::F32(&qx, &qy)
+                        } else {
+                            Points::F64(&px, &py)
+                        },
                         first: firsts[k],
                         start,
                         n,
@@ -238,43 +266,60 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
             },
         );
         s.points = [px, py];
+        s.points_f32 = [qx, qy];
         result
     })
 }
 
+/// A chunk's sequence points, request after request: x and y, in f64 or
+/// already rounded to f32.
+#[derive(Clone, Copy)]
+enum Points<'a> {
+    F64(&'a [f64], &'a [f64]),
+    F32(&'a [f32], &'a [f32]),
+}
+
 /// One emitter's block of a chunk's sequence points: request r is
-/// `(px, py)[(first + r)·n + start..]`.
+/// `points[(first + r)·n + start..]`.
 struct SequenceBlock<'a> {
-    px: &'a [f64],
-    py: &'a [f64],
+    points: Points<'a>,
     first: usize,
     start: usize,
     n: usize,
 }
 
 impl SequenceBlock<'_> {
+    /// Where request `request` of this block starts in the point arrays.
     #[inline(always)]
-    fn at(&self, request: usize, len: usize) -> (&[f64], &[f64]) {
-        let from = (self.first + request) * self.n + self.start;
-        (&self.px[from..from + len], &self.py[from..from + len])
+    fn from(&self, request: usize) -> usize {
+        (self.first + request) * self.n + self.start
     }
 }
 
 impl Coordinates for SequenceBlock<'_> {
     #[inline(always)]
-    fn f64s(&self, request: usize, x: &mut [f64], y: &mut [f64]) {
-        let (px, py) = self.at(request, x.len());
-        x.copy_from_slice(px);
-        y.copy_from_slice(py);
+    fn f64s<'a>(&'a self, request: usize, x: &'a mut [f64], _y: &'a mut [f64]) -> [&'a [f64]; 2] {
+        let (from, len) = (self.from(request), x.len());
+        match self.points {
+            Points::F64(px, py) => [&px[from..from + len], &py[from..from + len]],
+            // Filled in f32 only when no emitter runs in f64.
+            Points::F32(..) => unreachable!("f64 coordinates asked of f32 points"),
+        }
     }
     #[inline(always)]
-    fn f32s(&self, request: usize, x: &mut [f32], y: &mut [f32]) {
-        let (px, py) = self.at(request, x.len());
-        for (xk, &p) in x.iter_mut().zip(px) {
-            *xk = round_down_24(p);
-        }
-        for (yk, &p) in y.iter_mut().zip(py) {
-            *yk = round_down_24(p);
+    fn f32s<'a>(&'a self, request: usize, x: &'a mut [f32], y: &'a mut [f32]) -> [&'a [f32]; 2] {
+        let (from, len) = (self.from(request), x.len());
+        match self.points {
+            Points::F64(px, py) => {
+                for (xk, &p) in x.iter_mut().zip(&px[from..from + len]) {
+                    *xk = round_down_24(p);
+                }
+                for (yk, &p) in y.iter_mut().zip(&py[from..from + len]) {
+                    *yk = round_down_24(p);
+                }
+                [x, y]
+            }
+            Points::F32(qx, qy) => [&qx[from..from + len], &qy[from..from + len]],
         }
     }
 }

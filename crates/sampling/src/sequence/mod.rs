@@ -158,6 +158,46 @@ pub trait SampleSequence: Clone + Send + Sync {
         }
     }
 
+    /// [`fill_2d_split`](SampleSequence::fill_2d_split) rounded down to 24
+    /// bits: `x[k]` is [`round_down_24`] of the f64 `x[k]`, to the bit, so
+    /// the f32 points keep the f64 points' strata down to cells of `2^-24`
+    /// (the points the estimator's f32 path reads). For [`Sobol`] and
+    /// [`Stratified`] these are also the values of
+    /// [`next_2d_f32`](SampleSequence::next_2d_f32); [`Independent`]'s
+    /// `next_2d_f32` draws its f32 values from 32-bit words instead.
+    ///
+    /// The default rounds [`fill_2d_split`](SampleSequence::fill_2d_split)'s
+    /// values in blocks of 256; [`Sobol`] and [`Stratified`] round as they
+    /// store, with no f64 arrays in between.
+    ///
+    /// # Panics
+    /// If `x` and `y` differ in length.
+    ///
+    /// ```
+    /// use lambert_sampling::sequence::{round_down_24, SampleSequence, Sobol};
+    /// let seq = Sobol::new(5);
+    /// let (mut x, mut y) = ([0.0; 64], [0.0; 64]);
+    /// seq.fill_2d_split(100, 2, &mut x, &mut y);
+    /// let (mut x32, mut y32) = ([0.0f32; 64], [0.0f32; 64]);
+    /// seq.fill_2d_split_f32(100, 2, &mut x32, &mut y32);
+    /// assert!((0..64).all(|k| x32[k] == round_down_24(x[k]) && y32[k] == round_down_24(y[k])));
+    /// ```
+    fn fill_2d_split_f32(&self, first: u64, request: u64, x: &mut [f32], y: &mut [f32]) {
+        assert_eq!(
+            x.len(),
+            y.len(),
+            "fill_2d_split_f32: x and y differ in length"
+        );
+        let (mut bx, mut by) = ([0.0; 256], [0.0; 256]);
+        for (b, (x, y)) in x.chunks_mut(256).zip(y.chunks_mut(256)).enumerate() {
+            let (bx, by) = (&mut bx[..x.len()], &mut by[..x.len()]);
+            self.fill_2d_split(first.wrapping_add((b * 256) as u64), request, bx, by);
+            for ((xk, yk), (&px, &py)) in x.iter_mut().zip(y).zip(bx.iter().zip(&*by)) {
+                (*xk, *yk) = (round_down_24(px), round_down_24(py));
+            }
+        }
+    }
+
     /// [`fill_2d`](SampleSequence::fill_2d) in f32: `out[k]` is the value
     /// [`next_2d_f32`](SampleSequence::next_2d_f32) returns for request
     /// `request` of sample `first + k`, to the bit.
@@ -179,8 +219,6 @@ const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
 const TWO_POW_M53: f64 = 1.0 / 9_007_199_254_740_992.0;
 /// `2^-24`.
 const TWO_POW_M24_F32: f32 = 1.0 / 16_777_216.0;
-/// The largest f64 below 1.
-use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
 
 /// `x · 2^-32`: exact, in `[0, 1 − 2^-32]`.
 #[inline]
@@ -223,12 +261,6 @@ pub fn round_down_24(x: f64) -> f32 {
     ((x * SCALE).floor().clamp(0.0, SCALE - 1.0) * (1.0 / SCALE)) as f32
 }
 
-/// Clamps a computed value to `[0, 1)` (for sums that may round up to 1).
-#[inline]
-pub(crate) fn clamp_unit(x: f64) -> f64 {
-    x.clamp(0.0, ONE_MINUS_EPSILON)
-}
-
 /// The splitmix64 finaliser (Steele, Lea & Flood 2014; constants of
 /// Stafford's "Mix13"): a bijection of `u64` with full avalanche.
 #[inline]
@@ -255,6 +287,7 @@ pub(crate) fn hash3(a: u64, b: u64, c: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
 
     #[test]
     fn conversions_stay_below_one_on_all_ones() {
@@ -266,7 +299,6 @@ mod tests {
         assert!(round_down_24(1.0) < 1.0);
         // Plain rounding would give 1.0 here: the reason for truncation.
         assert_eq!(ONE_MINUS_EPSILON as f32, 1.0);
-        assert_eq!(clamp_unit(1.0), ONE_MINUS_EPSILON);
         assert_eq!(u32_to_f64(0), 0.0);
         assert_eq!(u32_to_f32(0), 0.0);
         assert_eq!(round_down_24(0.0), 0.0);
@@ -281,10 +313,17 @@ mod tests {
     #[test]
     fn round_down_24_truncates_exactly() {
         let by_cast = |x: f64| ((x * 16_777_216.0) as u32).min((1 << 24) - 1) as f32 / 16_777_216.0;
-        for k in (0..=u32::MAX).step_by(9_973).chain([u32::MAX, 255, 256, 257]) {
+        for k in (0..=u32::MAX)
+            .step_by(9_973)
+            .chain([u32::MAX, 255, 256, 257])
+        {
             let x = u32_to_f64(k);
             for x in [x, x.next_up(), x.next_down().max(0.0)] {
-                assert_eq!(round_down_24(x).to_bits(), by_cast(x).to_bits(), "x = {x:e}");
+                assert_eq!(
+                    round_down_24(x).to_bits(),
+                    by_cast(x).to_bits(),
+                    "x = {x:e}"
+                );
             }
         }
         assert_eq!(round_down_24(-0.25), 0.0);

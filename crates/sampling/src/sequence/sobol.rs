@@ -456,6 +456,34 @@ impl SampleSequence for Sobol {
         );
     }
 
+    /// The batch kernel's 32-bit values straight to f32 (their top 24
+    /// bits): the hashed low bits of
+    /// [`with_random_low_bits`](Sobol::with_random_low_bits) lie below
+    /// `2^-32`, so rounding the f64 values down to 24 bits gives the same.
+    #[inline(always)]
+    fn fill_2d_split_f32(&self, first: u64, request: u64, x: &mut [f32], y: &mut [f32]) {
+        assert_eq!(
+            x.len(),
+            y.len(),
+            "fill_2d_split_f32: x and y differ in length"
+        );
+        self.fill_pair_u32(
+            first,
+            request,
+            x.len(),
+            #[inline(always)]
+            |offset, _, _, xs, ys| {
+                let len = xs.len();
+                for (o, &v) in x[offset..offset + len].iter_mut().zip(xs) {
+                    *o = u32_to_f32(v);
+                }
+                for (o, &v) in y[offset..offset + len].iter_mut().zip(ys) {
+                    *o = u32_to_f32(v);
+                }
+            },
+        );
+    }
+
     fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {
         self.fill_pair_u32(first, request, out.len(), |offset, _, _, xs, ys| {
             let out = &mut out[offset..offset + xs.len()];

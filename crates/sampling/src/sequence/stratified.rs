@@ -42,17 +42,20 @@
 //! ```
 //!
 //! with `ξ₀, ξ₁` uniform in `[0, 1)` hashed from `(seed, pass, d, i)` (32
-//! bits each, the two halves of one 64-bit hash: a resolution of `2⁻³²/N`,
-//! finer than a Sobol point's `2⁻³²`). Hence:
+//! bits each: a resolution of `2⁻³²/N`, finer than a Sobol point's `2⁻³²`).
+//! Hence:
 //!
 //! * exactly one point per cell of the `nx × ny` grid (jittered stratification);
 //! * exactly one point in each of the `N` intervals `[k/N, (k+1)/N)` of each
 //!   axis (a Latin hypercube, the "N-rooks" property).
 //!
-//! The shifts and the jitter are outputs of counter-based SplitMix64 streams
-//! (one finaliser each), reduced to their range by a multiplication;
-//! the values are computed as `(k + ξ)·N⁻¹`, so a point within an ulp of a
-//! stratum's edge may round across it.
+//! The shifts and the jitters are a keyed 32-bit multiply-xorshift hash
+//! (Wellons' two-round hash) of the column, the row and the position, which
+//! vector units run sixteen lanes at a time; the shifts are reduced to their
+//! range by a multiplication (Lemire's). A 1-D request (`next_1d`) jitters
+//! with 53 bits of a counter-based SplitMix64 stream. The values are
+//! computed as `(k + ξ)·N⁻¹`, so a point within an ulp of a stratum's edge
+//! may round across it.
 //!
 //! **Prime `N`** (and `N = 2`, 3): the grid is `1 × N`, horizontal strips,
 //! which stratifies `y` only; the Latin-hypercube jitter above still
@@ -85,7 +88,7 @@
 //! `2^-24` above a stratum boundary `k/N` may fall just below it in f32.
 
 use super::stratified_batch::{cell_of, fill_pass, stream_bits, Grid, PairKeys, BLOCK};
-use super::{round_down_24, hash2, u64_to_f64, SampleSequence};
+use super::{hash2, round_down_24, u64_to_f64, SampleSequence};
 use crate::SamplingError;
 use glam::{DVec2, Vec2};
 
@@ -177,10 +180,17 @@ fn near_square_grid(n: u32) -> (u32, u32) {
 
 impl Stratified {
     /// Request `request` of samples `first..first + x.len()`, pass by
-    /// pass, written to `x` and `y`: the batch kernel of
-    /// `stratified_batch.rs`.
+    /// pass, each coordinate passed through `store` and written to `x` and
+    /// `y`: the batch kernel of `stratified_batch.rs`.
     #[inline(always)]
-    fn fill_points(&self, first: u64, request: u64, x: &mut [f64], y: &mut [f64]) {
+    fn fill_points<T>(
+        &self,
+        first: u64,
+        request: u64,
+        x: &mut [T],
+        y: &mut [T],
+        store: impl Fn(&Grid, f64) -> T + Copy,
+    ) {
         let n = u64::from(self.grid.n);
         let dim = 2 * request;
         let len = x.len();
@@ -197,13 +207,11 @@ impl Stratified {
             let room = room as usize;
             let keys = PairKeys::new(&self.grid, hash2(self.seed, pass), dim);
             let (x, y) = (&mut x[done..done + room], &mut y[done..done + room]);
-            fill_pass(&self.grid, &keys, dim, local, x, y);
+            fill_pass(&self.grid, &keys, dim, local, x, y, store);
             done += room;
         }
     }
-}
 
-impl Stratified {
     /// Request `request` of samples `first..first + out.len()` from the
     /// batch kernel, block by block, each point made by `make(x, y)`.
     #[inline(always)]
@@ -211,7 +219,13 @@ impl Stratified {
         let (mut x, mut y) = ([0.0; BLOCK], [0.0; BLOCK]);
         for (b, out) in out.chunks_mut(BLOCK).enumerate() {
             let (x, y) = (&mut x[..out.len()], &mut y[..out.len()]);
-            self.fill_points(first.wrapping_add((b * BLOCK) as u64), request, x, y);
+            self.fill_points(
+                first.wrapping_add((b * BLOCK) as u64),
+                request,
+                x,
+                y,
+                Grid::unit,
+            );
             for (o, (&x, &y)) in out.iter_mut().zip(x.iter().zip(&*y)) {
                 *o = make(x, y);
             }
@@ -230,10 +244,8 @@ impl SampleSequence for Stratified {
     fn next_1d(&mut self) -> f64 {
         let keys = self.keys();
         let k = cell_of(&self.grid, &keys, self.dim, self.local);
-        let x = self.grid.unit(
-            k,
-            u64_to_f64(stream_bits(keys.jitter, u64::from(self.local))),
-        );
+        let jitter = u64_to_f64(stream_bits(keys.jitter, u64::from(self.local)));
+        let x = self.grid.unit(f64::from(k) + jitter);
         self.dim += 1;
         x
     }
@@ -266,7 +278,19 @@ impl SampleSequence for Stratified {
     #[inline(always)]
     fn fill_2d_split(&self, first: u64, request: u64, x: &mut [f64], y: &mut [f64]) {
         assert_eq!(x.len(), y.len(), "fill_2d_split: x and y differ in length");
-        self.fill_points(first, request, x, y);
+        self.fill_points(first, request, x, y, Grid::unit);
+    }
+
+    /// The batch kernel, rounding each coordinate down to 24 bits as it
+    /// stores it: no f64 arrays in between.
+    #[inline(always)]
+    fn fill_2d_split_f32(&self, first: u64, request: u64, x: &mut [f32], y: &mut [f32]) {
+        assert_eq!(
+            x.len(),
+            y.len(),
+            "fill_2d_split_f32: x and y differ in length"
+        );
+        self.fill_points(first, request, x, y, Grid::unit_f32);
     }
 
     fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {
@@ -409,13 +433,49 @@ mod tests {
         ));
     }
 
+    /// The f32 coordinate computed without the f64 one (`Grid::unit_f32`)
+    /// is the f64 one rounded down to 24 bits, to the bit: on every grid
+    /// size class (1, primes, powers of two, N above 2²⁴ where a stratum
+    /// is finer than an f32 step, the largest N) and on strata at the ends
+    /// and the middle with jitters 0, ½, the largest and a spread of others.
+    #[test]
+    fn f32_coordinates_are_the_f64_ones_rounded_down() {
+        for n in [
+            1u32,
+            2,
+            3,
+            7,
+            1 << 10,
+            1 << 24,
+            (1 << 24) + 1,
+            3_125_000,
+            u32::MAX,
+        ] {
+            let (nx, ny) = near_square_grid(n);
+            let grid = Grid::new(n, nx, ny);
+            let jitters = (0..64u64).map(|j| j.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+            let jitters = jitters.chain([0, 1 << 63, u64::MAX, u64::MAX >> 1]);
+            for bits in jitters {
+                for k in [0, 1, n / 2, n / 3, n.saturating_sub(2), n - 1] {
+                    let sum = f64::from(k) + u64_to_f64(bits);
+                    let want = round_down_24(grid.unit(sum));
+                    assert_eq!(grid.unit_f32(sum).to_bits(), want.to_bits(), "n {n} k {k}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn never_one_even_on_adversarial_jitter() {
         // Largest stratum, all-ones jitter: k + ξ rounds up to n in f64.
         let n = u32::MAX;
         let unit = |k: u32, bits: u64, n: u32| {
             let (nx, ny) = near_square_grid(n);
-            Grid::new(n, nx, ny).unit(k, u64_to_f64(bits))
+            let grid = Grid::new(n, nx, ny);
+            let sum = f64::from(k) + u64_to_f64(bits);
+            let x = grid.unit(sum);
+            assert_eq!(grid.unit_f32(sum), round_down_24(x), "n {n} k {k}");
+            x
         };
         let x = unit(n - 1, u64::MAX, n);
         assert!(x < 1.0);

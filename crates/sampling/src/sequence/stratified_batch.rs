@@ -4,11 +4,12 @@
 //!
 //! A point costs, besides its cell:
 //!
-//! * two column and row shifts `s_c`, `t_r` and the jitter of both axes:
-//!   three splitmix64 finalisers ([`stream_bits`]) of counter-based streams,
-//!   which the compiler runs in vector lanes;
-//! * two range reductions by multiplication ([`reduce`]), two rotations
-//!   ([`rotate`]) and two multiplications by `1/N`;
+//! * two column and row shifts `s_c`, `t_r` and the jitters of both axes:
+//!   four 32-bit hashes ([`hash_u32`]), which the compiler runs sixteen
+//!   lanes to an AVX-512 register;
+//! * two range reductions by multiplication ([`reduce_u32`], in 32-bit
+//!   lanes when the grid's sides are below 2¹⁶: [`reduce_u32_narrow`]), two
+//!   rotations ([`rotate`]) and two multiplications by `1/N`;
 //! * the spread sub-strata `r·g_y mod ny` and `c·g_x mod nx`: for the first
 //!   pair, added up per lane like its cells (tabulated spreads of the lane
 //!   steps, three more rotations); for later pairs, looked up in a table of
@@ -26,7 +27,8 @@
 //! & Kurz 2019, "Faster remainder by direct computation"). Every value is
 //! the point-by-point value to the bit.
 
-use super::{clamp_unit, hash2, mix64};
+use super::{hash2, mix64};
+use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
 
 /// `2⁻³²`.
 const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
@@ -212,6 +214,48 @@ pub(super) fn reduce(h: u64, m: u32) -> u32 {
     ((high + (low >> 32)) >> 32) as u32
 }
 
+/// Output `j` of the 32-bit hash stream keyed by `key`: `H(j ⊕ k)`, with
+/// `k` the low 32 bits of `key` and `H` the two-round multiply-xorshift
+/// hash of lowest measured bias in C. Wellons' search ("Prospecting for
+/// Hash Functions", 2018; hash-prospector), a bijection of `u32` with full
+/// avalanche. It gives the shifts (of column or row `j`) and the jitters
+/// (of position `j`, 32 bits per axis).
+///
+/// Why 32 bits and not SplitMix64 outputs (which [`stream_bits`] still
+/// gives the 1-D coordinates): a shift needs `log₂ √N ≤ 16` bits and a
+/// jitter 32, while the 64-bit finaliser's multiplications run eight 64-bit
+/// lanes per AVX-512 register at three times the cost of a 32-bit multiply,
+/// where these run sixteen; shifts and jitter were half a stratified
+/// point's cost.
+#[inline(always)]
+pub(super) fn hash_u32(key: u64, j: u32) -> u32 {
+    let mut x = j ^ key as u32;
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x21f0_aaad);
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x735a_2d97);
+    x ^ (x >> 15)
+}
+
+/// `⌊h · m / 2³²⌋ ∈ 0..m`: [`reduce`] for a 32-bit hash (Lemire 2019),
+/// each value of `0..m` within `m/2³²` (relative) of probability `1/m`.
+#[inline(always)]
+pub(super) fn reduce_u32(h: u32, m: u32) -> u32 {
+    ((u64::from(h) * u64::from(m)) >> 32) as u32
+}
+
+/// [`reduce_u32`] for `m < 2¹⁶` in 32-bit arithmetic, the same value:
+/// with `h = 2¹⁶·a + b`, `⌊h·m/2³²⌋ = ⌊(a·m + ⌊b·m/2¹⁶⌋)/2¹⁶⌋`, and
+/// `a·m + ⌊b·m/2¹⁶⌋ ≤ (2¹⁶ − 1)² + 2¹⁶ − 1 < 2³²` does not overflow. Vector
+/// units multiply 32-bit lanes at a third of the cost of 64-bit ones (and
+/// have no 32-bit high-half multiply), so the batch kernel takes this form
+/// whenever the grid's sides allow.
+#[inline(always)]
+pub(super) fn reduce_u32_narrow(h: u32, m: u32) -> u32 {
+    debug_assert!(m < 1 << 16);
+    ((h >> 16) * m + (((h & 0xffff) * m) >> 16)) >> 16
+}
+
 /// `(x + s) mod m` for `x < m` and `s ≤ m`, without overflow and without a
 /// division.
 #[inline(always)]
@@ -327,6 +371,8 @@ pub(super) struct Grid {
     alpha: u32,
     /// `1/N`, rounded.
     inv_n: f64,
+    /// `2²⁴ · inv_n` (exact).
+    inv_n_24: f64,
     /// `cell mod nx` and `cell / nx`.
     by_nx: FastDiv,
     /// `r·g_y mod ny` for every row `r`, with `g_y` = [`golden_unit`]`(ny)`
@@ -364,6 +410,7 @@ impl Grid {
             ny,
             alpha,
             inv_n: 1.0 / f64::from(n),
+            inv_n_24: 16_777_216.0 / f64::from(n),
             by_nx,
             row_spread,
             column_spread,
@@ -385,14 +432,25 @@ impl Grid {
         ((u64::from(i) * u64::from(self.alpha) + u64::from(offset)) % u64::from(self.n)) as u32
     }
 
-    /// `(k + ξ)·N⁻¹` for stratum `k < N` and jitter `ξ ∈ [0, 1)`, clamped
-    /// below 1. A multiplication by the rounded reciprocal, not a division
-    /// (which costs as much as the rest of the point on vector units): a
-    /// point within an ulp of a stratum's edge may land on the other side
-    /// of it.
+    /// `(k + ξ)·N⁻¹` from the sum `k + ξ` of a stratum `k < N` and a jitter
+    /// `ξ ∈ [0, 1)`, clamped below 1. A multiplication by the rounded
+    /// reciprocal, not a division (which costs as much as the rest of the
+    /// point on vector units): a point within an ulp of a stratum's edge
+    /// may land on the other side of it.
     #[inline(always)]
-    pub(super) fn unit(&self, k: u32, jitter: f64) -> f64 {
-        clamp_unit((f64::from(k) + jitter) * self.inv_n)
+    pub(super) fn unit(&self, sum: f64) -> f64 {
+        // k + ξ ≥ 0, so only the upper end of a clamp to [0, 1) can act.
+        (sum * self.inv_n).min(ONE_MINUS_EPSILON)
+    }
+
+    /// [`super::round_down_24`]`(`[`Grid::unit`]`(sum))` to the bit, without the f64
+    /// value: `min(⌊sum · 2²⁴N⁻¹⌋, 2²⁴ − 1) · 2⁻²⁴`. Scaling by 2²⁴ commutes
+    /// with rounding (no subnormals arise), so `sum · (2²⁴ · N⁻¹)` rounds to
+    /// `2²⁴` times the f64 product, and the clamp below 1 becomes the `min`.
+    #[inline(always)]
+    pub(super) fn unit_f32(&self, sum: f64) -> f32 {
+        const TOP: f64 = 16_777_215.0;
+        ((sum * self.inv_n_24).floor().min(TOP) * (1.0 / 16_777_216.0)) as f32
     }
 
     /// The 2-D point of position `i` of a pass in cell `(c, r)`: column
@@ -401,32 +459,34 @@ impl Grid {
     #[inline(always)]
     pub(super) fn point(&self, keys: &PairKeys, c: u32, r: u32, i: u32) -> glam::DVec2 {
         let spread = [self.column_spread.get(c), self.row_spread.get(r)];
-        self.spread_point(keys, [c, r], spread, i)
+        let [x, y] = self.spread_sums(keys, [c, r], spread, i, reduce_u32);
+        glam::DVec2::new(self.unit(x), self.unit(y))
     }
 
-    /// [`Grid::point`] given the spread column and row, `c·g_x mod nx` and
+    /// The stratum-plus-jitter sums `k + ξ` of [`Grid::point`]'s two
+    /// coordinates, given the spread column and row, `c·g_x mod nx` and
     /// `r·g_y mod ny`.
     #[inline(always)]
-    fn spread_point(
+    fn spread_sums(
         &self,
         keys: &PairKeys,
         [c, r]: [u32; 2],
         [column_spread, row_spread]: [u32; 2],
         i: u32,
-    ) -> glam::DVec2 {
+        reduce: impl Fn(u32, u32) -> u32,
+    ) -> [f64; 2] {
         let (nx, ny) = (self.nx, self.ny);
-        let s = reduce(stream_bits(keys.sigma, u64::from(c)), ny);
-        let t = reduce(stream_bits(keys.tau, u64::from(r)), nx);
+        let s = reduce(hash_u32(keys.sigma, c), ny);
+        let t = reduce(hash_u32(keys.tau, r), nx);
         let kx = c * ny + rotate(row_spread, s, ny);
         let ky = r * nx + rotate(column_spread, t, nx);
-        // One 64-bit output jitters both axes, 32 bits each: a resolution of
-        // 2⁻³²/N, finer than the 2⁻³² of a Sobol point.
-        let bits = stream_bits(keys.jitter, u64::from(i));
-        let (high, low) = ((bits >> 32) as u32, bits as u32);
-        glam::DVec2::new(
-            self.unit(kx, f64::from(high) * TWO_POW_M32),
-            self.unit(ky, f64::from(low) * TWO_POW_M32),
-        )
+        // 32 hashed bits per axis, the two halves of the jitter key: a
+        // resolution of 2⁻³²/N, finer than the 2⁻³² of a Sobol point.
+        let (high, low) = (hash_u32(keys.jitter, i), hash_u32(keys.jitter >> 32, i));
+        [
+            f64::from(kx) + f64::from(high) * TWO_POW_M32,
+            f64::from(ky) + f64::from(low) * TWO_POW_M32,
+        ]
     }
 }
 
@@ -444,11 +504,13 @@ pub(super) struct PairKeys {
     pub cell: PermuteKeys,
     /// The first pair's offset `b = reduce(hash2(h, "cell"), N)`.
     pub offset: u32,
-    /// Column shifts `s_c`: output `c` of the stream keyed `hash2(h, "sigma")`.
+    /// Column shifts `s_c`: [`hash_u32`] of `c` keyed `hash2(h, "sigma")`.
     pub sigma: u64,
-    /// Row shifts `t_r`: output `r` of the stream keyed `hash2(h, "tau")`.
+    /// Row shifts `t_r`: [`hash_u32`] of `r` keyed `hash2(h, "tau")`.
     pub tau: u64,
-    /// Jitter of position `i`: output `i` of the stream keyed `hash2(h, "jitter")`.
+    /// Jitter of position `i`: [`hash_u32`] of `i` keyed by the low (x) and
+    /// high (y) halves of `hash2(h, "jitter")`; 1-D coordinates take output
+    /// `i` of the SplitMix64 stream [`stream_bits`] keyed by all of it.
     pub jitter: u64,
 }
 
@@ -481,16 +543,19 @@ pub(super) fn cell_of(grid: &Grid, keys: &PairKeys, dim: u64, i: u32) -> u32 {
 }
 
 /// The 2-D points of positions `first … first + len − 1` of one pass (all
-/// `< N`) in dimensions `(dim, dim + 1)`, written to `x[k]`, `y[k]` for
-/// `k < len = x.len()`. Inlined into the caller's instruction set.
+/// `< N`) in dimensions `(dim, dim + 1)`, each coordinate made by
+/// `store(grid, k + ξ)` ([`Grid::unit`] for f64, [`Grid::unit_f32`] for
+/// f32) and written to `x[k]`, `y[k]` for `k < len = x.len()`. Inlined into
+/// the caller's instruction set.
 #[inline(always)]
-pub(super) fn fill_pass(
+pub(super) fn fill_pass<T>(
     grid: &Grid,
     keys: &PairKeys,
     dim: u64,
     first: u32,
-    x: &mut [f64],
-    y: &mut [f64],
+    x: &mut [T],
+    y: &mut [T],
+    store: impl Fn(&Grid, f64) -> T,
 ) {
     let len = x.len();
     debug_assert_eq!(len, y.len());
@@ -541,12 +606,48 @@ pub(super) fn fill_pass(
             grid.row_spread.get_block(&r[..m], &mut spread_r[..m]);
         }
         let (x, y) = (&mut x[start..start + m], &mut y[start..start + m]);
-        for k in 0..m {
-            let cell = [c[k], r[k]];
-            let spread = [spread_c[k], spread_r[k]];
-            let u = grid.spread_point(keys, cell, spread, base + k as u32);
-            (x[k], y[k]) = (u.x, u.y);
+        let cells = [&c[..m], &r[..m]];
+        let spreads = [&spread_c[..m], &spread_r[..m]];
+        // The same shifts either way (`reduce_u32_narrow`); the narrow form
+        // vectorises better.
+        if nx < 1 << 16 && ny < 1 << 16 {
+            block_points(
+                grid,
+                keys,
+                cells,
+                spreads,
+                base,
+                x,
+                y,
+                &store,
+                reduce_u32_narrow,
+            );
+        } else {
+            block_points(grid, keys, cells, spreads, base, x, y, &store, reduce_u32);
         }
+    }
+}
+
+/// The points of one block of [`fill_pass`] from their cells and spreads,
+/// with the shifts reduced by `reduce` (one instantiation per form).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn block_points<T>(
+    grid: &Grid,
+    keys: &PairKeys,
+    [c, r]: [&[u32]; 2],
+    [spread_c, spread_r]: [&[u32]; 2],
+    base: u32,
+    x: &mut [T],
+    y: &mut [T],
+    store: &impl Fn(&Grid, f64) -> T,
+    reduce: impl Fn(u32, u32) -> u32 + Copy,
+) {
+    for k in 0..x.len() {
+        let cell = [c[k], r[k]];
+        let spread = [spread_c[k], spread_r[k]];
+        let [sx, sy] = grid.spread_sums(keys, cell, spread, base + k as u32, reduce);
+        (x[k], y[k]) = (store(grid, sx), store(grid, sy));
     }
 }
 
@@ -664,6 +765,28 @@ mod tests {
                     let want = ((u64::from(x) + u64::from(s)) % u64::from(m)) as u32;
                     assert_eq!(rotate(x, s, m), want, "x {x} s {s} m {m}");
                 }
+            }
+        }
+    }
+
+    /// The 32-bit reductions against 128-bit arithmetic: `reduce_u32` for
+    /// any `m`, and its narrow form, the same value, on every `m < 2¹⁶`
+    /// (with hashes at both ends, at the 16-bit seams and spread between).
+    #[test]
+    fn reductions_of_32_bit_hashes_are_exact() {
+        let want = |h: u32, m: u32| ((u64::from(h) * u64::from(m)) >> 32) as u32;
+        for m in [1u32, 2, 3, 1000, 65_535, 65_536, 1 << 31, u32::MAX] {
+            for h in [0u32, 1, 0xffff, 0x1_0000, u32::MAX, 0x9e37_79b9] {
+                assert_eq!(reduce_u32(h, m), want(h, m), "h {h:#x} m {m}");
+            }
+        }
+        let hashes: Vec<u32> = (0..64u32)
+            .map(|k| hash_u32(7, k))
+            .chain([0, 1, 0xffff, 0x1_0000, 0xffff_0000, 0xfffe_ffff, u32::MAX])
+            .collect();
+        for m in 1..1u32 << 16 {
+            for &h in &hashes {
+                assert_eq!(reduce_u32_narrow(h, m), want(h, m), "h {h:#x} m {m}");
             }
         }
     }
