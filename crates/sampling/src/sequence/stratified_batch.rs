@@ -184,7 +184,13 @@ impl FastDiv {
         let q = if self.d == 1 {
             x
         } else {
-            ((u128::from(self.m) * u128::from(x)) >> 64) as u32
+            // ⌊M·x / 2⁶⁴⌋ with M = 2³²·M_hi + M_lo, from 32 × 32-bit
+            // products, which vectorise (a 64 × 64 → 128-bit product does
+            // not): ⌊(M_hi·x + ⌊M_lo·x / 2³²⌋) / 2³²⌋, the same value, and
+            // M_hi·x + ⌊M_lo·x / 2³²⌋ < (2³² − 1)² + 2³² < 2⁶⁴.
+            let x = u64::from(x);
+            let (high, low) = (self.m >> 32, self.m & 0xffff_ffff);
+            ((high * x + ((low * x) >> 32)) >> 32) as u32
         };
         (q, x - q * self.d)
     }
