@@ -58,32 +58,26 @@ fn bench_sequence<S: SampleSequence>(c: &mut Criterion, name: &str, seq: S) {
     // As the estimator reads them: structure of arrays, inside
     // `Isa::run` (the widest set this processor has), f64 and f32.
     let isa = Isa::selected();
-    g.bench_function(format!("{name} request 0 split {isa}"), |b| {
-        let (mut x, mut y) = (vec![0.0f64; CHUNK], vec![0.0f64; CHUNK]);
-        let mut chunk = 0u64;
-        b.iter(|| {
-            chunk = (chunk + 1) % CHUNKS;
-            let first = chunk * CHUNK as u64;
+    bench_split(
+        &mut g,
+        format!("{name} request 0 split {isa}"),
+        |first, x: &mut [f64], y: &mut [f64]| {
             isa.run(
                 #[inline(always)]
-                || seq.fill_2d_split(first, 0, &mut x, &mut y),
-            );
-            black_box((&x, &y));
-        })
-    });
-    g.bench_function(format!("{name} request 0 split f32 {isa}"), |b| {
-        let (mut x, mut y) = (vec![0.0f32; CHUNK], vec![0.0f32; CHUNK]);
-        let mut chunk = 0u64;
-        b.iter(|| {
-            chunk = (chunk + 1) % CHUNKS;
-            let first = chunk * CHUNK as u64;
+                || seq.fill_2d_split(first, 0, x, y),
+            )
+        },
+    );
+    bench_split(
+        &mut g,
+        format!("{name} request 0 split f32 {isa}"),
+        |first, x: &mut [f32], y: &mut [f32]| {
             isa.run(
                 #[inline(always)]
-                || seq.fill_2d_split_f32(first, 0, &mut x, &mut y),
-            );
-            black_box((&x, &y));
-        })
-    });
+                || seq.fill_2d_split_f32(first, 0, x, y),
+            )
+        },
+    );
     g.bench_function(format!("{name} request 0 batch f32"), |b| {
         let mut out = vec![Vec2::ZERO; CHUNK];
         let mut chunk = 0u64;
@@ -94,6 +88,23 @@ fn bench_sequence<S: SampleSequence>(c: &mut Criterion, name: &str, seq: S) {
         })
     });
     g.finish();
+}
+
+/// Times `fill(first, x, y)` on a chunk's arrays, chunk after chunk.
+fn bench_split<T: Copy + Default>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    name: String,
+    fill: impl Fn(u64, &mut [T], &mut [T]),
+) {
+    g.bench_function(name, |b| {
+        let (mut x, mut y) = (vec![T::default(); CHUNK], vec![T::default(); CHUNK]);
+        let mut chunk = 0u64;
+        b.iter(|| {
+            chunk = (chunk + 1) % CHUNKS;
+            fill(chunk * CHUNK as u64, &mut x, &mut y);
+            black_box((&x, &y));
+        })
+    });
 }
 
 fn sequences(c: &mut Criterion) {

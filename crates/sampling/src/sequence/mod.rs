@@ -147,7 +147,7 @@ pub trait SampleSequence: Clone + Send + Sync {
     /// assert!(points.iter().enumerate().all(|(k, p)| (p.x, p.y) == (x[k], y[k])));
     /// ```
     fn fill_2d_split(&self, first: u64, request: u64, x: &mut [f64], y: &mut [f64]) {
-        assert_eq!(x.len(), y.len(), "fill_2d_split: x and y differ in length");
+        assert_split_lengths("fill_2d_split", x.len(), y.len());
         let mut block = [DVec2::ZERO; 256];
         for (b, (x, y)) in x.chunks_mut(256).zip(y.chunks_mut(256)).enumerate() {
             let block = &mut block[..x.len()];
@@ -183,11 +183,7 @@ pub trait SampleSequence: Clone + Send + Sync {
     /// assert!((0..64).all(|k| x32[k] == round_down_24(x[k]) && y32[k] == round_down_24(y[k])));
     /// ```
     fn fill_2d_split_f32(&self, first: u64, request: u64, x: &mut [f32], y: &mut [f32]) {
-        assert_eq!(
-            x.len(),
-            y.len(),
-            "fill_2d_split_f32: x and y differ in length"
-        );
+        assert_split_lengths("fill_2d_split_f32", x.len(), y.len());
         let (mut bx, mut by) = ([0.0; 256], [0.0; 256]);
         for (b, (x, y)) in x.chunks_mut(256).zip(y.chunks_mut(256)).enumerate() {
             let (bx, by) = (&mut bx[..x.len()], &mut by[..x.len()]);
@@ -211,6 +207,15 @@ pub trait SampleSequence: Clone + Send + Sync {
             *o = s.next_2d_f32();
         }
     }
+}
+
+/// The check every split fill makes: `x` and `y` must have one length.
+///
+/// # Panics
+/// If they differ, naming `method`.
+#[inline(always)]
+pub(crate) fn assert_split_lengths(method: &str, x: usize, y: usize) {
+    assert_eq!(x, y, "{method}: x and y differ in length");
 }
 
 /// `2^-32`.

@@ -71,7 +71,9 @@
 
 use super::sobol_batch::{self, burley_hash, CoordinateScramble, PairPlan};
 use super::sobol_table::{SOBOL_DIMENSIONS, SOBOL_MATRICES};
-use super::{hash2, hash3, u32_to_f32, u32_to_f64, SampleSequence, TWO_POW_M53};
+use super::{
+    assert_split_lengths, hash2, hash3, u32_to_f32, u32_to_f64, SampleSequence, TWO_POW_M53,
+};
 use glam::{DVec2, Vec2};
 
 /// Number of Sobol dimensions with their own direction numbers (256).
@@ -441,7 +443,7 @@ impl SampleSequence for Sobol {
     /// to two arrays.
     #[inline(always)]
     fn fill_2d_split(&self, first: u64, request: u64, x: &mut [f64], y: &mut [f64]) {
-        assert_eq!(x.len(), y.len(), "fill_2d_split: x and y differ in length");
+        assert_split_lengths("fill_2d_split", x.len(), y.len());
         let d = 2 * request;
         self.fill_pair_u32(
             first,
@@ -462,11 +464,7 @@ impl SampleSequence for Sobol {
     /// `2^-32`, so rounding the f64 values down to 24 bits gives the same.
     #[inline(always)]
     fn fill_2d_split_f32(&self, first: u64, request: u64, x: &mut [f32], y: &mut [f32]) {
-        assert_eq!(
-            x.len(),
-            y.len(),
-            "fill_2d_split_f32: x and y differ in length"
-        );
+        assert_split_lengths("fill_2d_split_f32", x.len(), y.len());
         self.fill_pair_u32(
             first,
             request,

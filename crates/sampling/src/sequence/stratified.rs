@@ -88,7 +88,7 @@
 //! `2^-24` above a stratum boundary `k/N` may fall just below it in f32.
 
 use super::stratified_batch::{cell_of, fill_pass, stream_bits, Grid, PairKeys, BLOCK};
-use super::{hash2, round_down_24, u64_to_f64, SampleSequence};
+use super::{assert_split_lengths, hash2, round_down_24, u64_to_f64, SampleSequence};
 use crate::SamplingError;
 use glam::{DVec2, Vec2};
 
@@ -277,7 +277,7 @@ impl SampleSequence for Stratified {
     /// to two arrays.
     #[inline(always)]
     fn fill_2d_split(&self, first: u64, request: u64, x: &mut [f64], y: &mut [f64]) {
-        assert_eq!(x.len(), y.len(), "fill_2d_split: x and y differ in length");
+        assert_split_lengths("fill_2d_split", x.len(), y.len());
         self.fill_points(first, request, x, y, Grid::unit);
     }
 
@@ -285,11 +285,7 @@ impl SampleSequence for Stratified {
     /// stores it: no f64 arrays in between.
     #[inline(always)]
     fn fill_2d_split_f32(&self, first: u64, request: u64, x: &mut [f32], y: &mut [f32]) {
-        assert_eq!(
-            x.len(),
-            y.len(),
-            "fill_2d_split_f32: x and y differ in length"
-        );
+        assert_split_lengths("fill_2d_split_f32", x.len(), y.len());
         self.fill_points(first, request, x, y, Grid::unit_f32);
     }
 
