@@ -7,7 +7,9 @@
 //! estimator calls (`fill_2d_split`, and `fill_2d_split_f32` for its f32
 //! path), run inside `Isa::run` as the estimator runs them. Stratified
 //! uses N = 3 125 000, one replicate of a 5·10⁷-sample estimate (a
-//! 1250 × 2500 grid).
+//! 1250 × 2500 grid), and N = 2²⁰, one of a 2²⁴-sample estimate's (a
+//! 1024 × 1024 grid, where the keyed permutation of request 1 needs no
+//! cycle walk).
 
 use std::hint::black_box;
 
@@ -58,26 +60,28 @@ fn bench_sequence<S: SampleSequence>(c: &mut Criterion, name: &str, seq: S) {
     // As the estimator reads them: structure of arrays, inside
     // `Isa::run` (the widest set this processor has), f64 and f32.
     let isa = Isa::selected();
-    bench_split(
-        &mut g,
-        format!("{name} request 0 split {isa}"),
-        |first, x: &mut [f64], y: &mut [f64]| {
-            isa.run(
-                #[inline(always)]
-                || seq.fill_2d_split(first, 0, x, y),
-            )
-        },
-    );
-    bench_split(
-        &mut g,
-        format!("{name} request 0 split f32 {isa}"),
-        |first, x: &mut [f32], y: &mut [f32]| {
-            isa.run(
-                #[inline(always)]
-                || seq.fill_2d_split_f32(first, 0, x, y),
-            )
-        },
-    );
+    for request in [0u64, 1] {
+        bench_split(
+            &mut g,
+            format!("{name} request {request} split {isa}"),
+            |first, x: &mut [f64], y: &mut [f64]| {
+                isa.run(
+                    #[inline(always)]
+                    || seq.fill_2d_split(first, request, x, y),
+                )
+            },
+        );
+        bench_split(
+            &mut g,
+            format!("{name} request {request} split f32 {isa}"),
+            |first, x: &mut [f32], y: &mut [f32]| {
+                isa.run(
+                    #[inline(always)]
+                    || seq.fill_2d_split_f32(first, request, x, y),
+                )
+            },
+        );
+    }
     g.bench_function(format!("{name} request 0 batch f32"), |b| {
         let mut out = vec![Vec2::ZERO; CHUNK];
         let mut chunk = 0u64;
@@ -111,6 +115,9 @@ fn sequences(c: &mut Criterion) {
     bench_sequence(c, "independent", Independent::new(1));
     bench_sequence(c, "sobol", Sobol::new(1));
     bench_sequence(c, "stratified", Stratified::new(3_125_000, 1).unwrap());
+    // A power-of-two pass (a 1024 × 1024 grid), as in a 2²⁴-sample
+    // estimate's 16 randomizations and every row of the study.
+    bench_sequence(c, "stratified 2^20", Stratified::new(1 << 20, 1).unwrap());
 }
 
 // criterion_group! generates an undocumented pub fn.

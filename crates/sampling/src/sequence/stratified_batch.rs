@@ -84,6 +84,14 @@ impl Domain {
         }
     }
 
+    /// Whether `n = 2^w`: then the walk's bijection of `0..2^w` is already
+    /// a permutation of `0..n`, and no value ever falls outside (every `n`
+    /// of a power-of-two sample count, as in the study's rows).
+    #[inline(always)]
+    fn is_whole(self) -> bool {
+        u64::from(self.mask) + 1 == u64::from(self.n)
+    }
+
     /// One step of the cycle walk: two rounds of invertible operations on
     /// `w`-bit integers (a bijection of `0..2^w`).
     #[inline(always)]
@@ -131,6 +139,12 @@ impl Domain {
         }
         for (k, x) in x.iter_mut().enumerate() {
             *x = self.step(*x, keys(k));
+        }
+        if self.is_whole() {
+            // Every step lands in 0..2^w = 0..n: no lane needs a walk, and
+            // listing them (a serial loop of stores at a running index)
+            // would cost as much as the step itself.
+            return;
         }
         // The lanes still outside 0..n, listed without branches; each round
         // steps every listed lane once and lists again those still outside,
@@ -708,12 +722,21 @@ mod tests {
     /// Batches that start anywhere in a pass and cross block boundaries
     /// give the cursor's values, on both kinds of cell order (the first
     /// pair's and the keyed permutation's).
+    /// N = 10 000 walks its permutation; N = 2¹⁴ (a whole power of two)
+    /// never does, and skips the listing of walking lanes.
     #[test]
     fn batches_give_the_cursor_values_from_any_start() {
-        let seq = Stratified::new(10_000, 3).unwrap();
+        for n in [10_000u32, 1 << 14] {
+            batches_match_the_cursor(n);
+        }
+    }
+
+    fn batches_match_the_cursor(n: u32) {
+        let seq = Stratified::new(n, 3).unwrap();
         let mut cursor = seq.clone();
+        let n = u64::from(n);
         for request in [0u64, 1, 2] {
-            for (start, len) in [(0u64, 7usize), (250, 300), (9_990, 10), (9_000, 1_000)] {
+            for (start, len) in [(0u64, 7usize), (250, 300), (n - 10, 10), (n - 1_000, 1_000)] {
                 let mut batch = vec![glam::DVec2::ZERO; len];
                 seq.fill_2d(start, request, &mut batch);
                 for (k, u) in batch.iter().enumerate() {
@@ -730,6 +753,25 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Exactly the powers of two are whole domains (`0..2^w` with no value
+    /// outside `0..n`), and a whole domain's permutation stays inside it
+    /// after one step.
+    #[test]
+    fn whole_domains_are_the_powers_of_two() {
+        for n in [1u32, 2, 3, 4, 5, 1 << 14, (1 << 14) + 1, 1 << 31, u32::MAX] {
+            assert_eq!(Domain::new(n).is_whole(), n.is_power_of_two(), "n {n}");
+        }
+        let domain = Domain::new(1 << 10);
+        let keys = PermuteKeys::new(42);
+        let mut seen = vec![false; 1 << 10];
+        for x in 0..1u32 << 10 {
+            let y = domain.step(x, &keys);
+            assert!(y < 1 << 10, "step({x}) = {y}");
+            seen[y as usize] = true;
+        }
+        assert!(seen.iter().all(|&s| s), "one step is a bijection of 0..n");
     }
 
     /// The first pair's multiplier is a unit near `0.618 N`, so its order
