@@ -19,10 +19,14 @@
 //! lane from a block's first cell and tabulated column and row steps
 //! `k·α mod N` ([`Grid`]), with no division. The cells of later pairs come
 //! from a keyed permutation walked in blocks: one walk step for a whole
-//! block (branch-free, structure of arrays), then the lanes that fell
-//! outside `0..N` (fewer than half, since `2^w < 2N`) are listed without
-//! branches and stepped in rounds, each round listing again those still
-//! outside, so that no branch depends on a random walk length; `cell mod nx`
+//! block (branch-free, structure of arrays), and nothing more when `N` is a
+//! power of two (the step is then a permutation of `0..N`). Otherwise the
+//! lanes that fell outside `0..N` (fewer than half, since `2^w < 2N`) are
+//! stepped again by a few whole-block rounds that keep the lanes already
+//! inside (a select, which vectorises), and the few still outside after
+//! them are listed without branches and stepped in rounds, each round
+//! listing again those still outside, so that no branch depends on a
+//! random walk length; `cell mod nx`
 //! and `cell / nx` use a precomputed reciprocal ([`FastDiv`], Lemire, Kaser
 //! & Kurz 2019, "Faster remainder by direct computation"). Every value is
 //! the point-by-point value to the bit.
@@ -84,6 +88,10 @@ impl Domain {
         }
     }
 
+    /// Whole-block rounds of [`Domain::permute_block`]'s walk before the
+    /// lanes still outside are listed.
+    const VECTOR_ROUNDS: usize = 4;
+
     /// Whether `n = 2^w`: then the walk's bijection of `0..2^w` is already
     /// a permutation of `0..n`, and no value ever falls outside (every `n`
     /// of a power-of-two sample count, as in the study's rows).
@@ -144,6 +152,19 @@ impl Domain {
             // Every step lands in 0..2^w = 0..n: no lane needs a walk, and
             // listing them (a serial loop of stores at a running index)
             // would cost as much as the step itself.
+            return;
+        }
+        // A few rounds over the whole block, stepping only the lanes still
+        // outside 0..n (a select, so they vectorise): each round leaves
+        // outside a fraction below ½ (`2^w < 2N`) of those it found, so
+        // after them few lanes walk on, and often none.
+        for _ in 0..Self::VECTOR_ROUNDS {
+            for (k, x) in x.iter_mut().enumerate() {
+                let stepped = self.step(*x, keys(k));
+                *x = if *x >= self.n { stepped } else { *x };
+            }
+        }
+        if !x.iter().fold(false, |out, &v| out | (v >= self.n)) {
             return;
         }
         // The lanes still outside 0..n, listed without branches; each round
