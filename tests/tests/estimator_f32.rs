@@ -199,7 +199,13 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// when the stratified shifts and jitters became 32-bit hashes, the
 /// digest was 0xe0e0_a19a_4250_d10c; again only stratified points moved.
 /// The f32 path's native fill of sequence points moved nothing: it gives
-/// the f64 points rounded down to 24 bits, to the bit, as before.)
+/// the f64 points rounded down to 24 bits, to the bit, as before. Re-pinned
+/// when a disk seen from its axis (a circle) took its azimuth from the
+/// linear guess without a Newton step (`DiskSolidAngle`): the digest was
+/// 0x3e42_7f3e_63d6_7a54; compared with the CLI, only the rows of
+/// the coaxial disk of half-angle 1.2 moved (means by at most 2e-11
+/// relative, standard errors by at most 5e-8), those of half-angle 0.01
+/// did not.)
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -217,7 +223,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0x3e42_7f3e_63d6_7a54;
+const PINNED: u64 = 0x5255_c32f_f4c6_09dc;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()
