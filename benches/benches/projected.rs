@@ -3,12 +3,13 @@
 //! it replaces, in f32 and f64, RNG included (as in `warps`): uniform cone
 //! vs projected cap; sphere solid angle vs projected sphere; spherical
 //! triangle and rectangle vs projected polygon; disk area vs disk solid
-//! angle; and, next to the projected polygon, a prototype of Arvo's 2001
-//! method (`lambert_benches::arvo`), the alternative to Peters' that the
-//! sampling crate measured and did not choose. Group `projected` samples
-//! from a prepared sampler; group
-//! `projected-setup` times preparing one sampler for a shading point, which
-//! a path tracer pays once per light per shading point.
+//! angle, plain and tabulated (`TabulatedDiskSolidAngle`); and, next to
+//! the projected polygon, a prototype of Arvo's 2001 method
+//! (`lambert_benches::arvo`), the alternative to Peters' that the sampling
+//! crate measured and did not choose. Group `projected` samples from a
+//! prepared sampler; group `projected-setup` times preparing one sampler
+//! for a shading point, which a path tracer pays once per light per shading
+//! point.
 //!
 //! Medians: `python3 benches/scripts/medians.py projected`.
 
@@ -247,6 +248,15 @@ fn sampling(c: &mut Criterion) {
         |u| disk32.sample(u).direction,
         disk64.sample(u).direction
     );
+    // The same map with its inverse tabulated (an estimate's many samples
+    // at one point).
+    let table64 = s64::TabulatedDiskSolidAngle::new(disk64);
+    let table32 = s32::TabulatedDiskSolidAngle::new(disk32);
+    both!(
+        "disk solid angle tabulated",
+        |u| table32.sample(u).direction,
+        table64.sample(u).direction
+    );
     g.finish();
 }
 
@@ -286,6 +296,13 @@ fn setup(c: &mut Criterion) {
     });
     g.bench_function("disk solid angle f64", |bch| {
         bch.iter(|| s64::DiskSolidAngle::new(black_box(DVec3::ZERO), &disk))
+    });
+    g.bench_function("disk solid angle tabulated f64", |bch| {
+        bch.iter(|| {
+            s64::TabulatedDiskSolidAngle::new(
+                s64::DiskSolidAngle::new(black_box(DVec3::ZERO), &disk).unwrap(),
+            )
+        })
     });
     g.finish();
 }

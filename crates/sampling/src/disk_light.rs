@@ -89,6 +89,9 @@ macro_rules! disk_light_impl {
         /// so there the solid-angle sampler wins by far more than its cost; far
         /// from a disk that faces the receiver, area sampling is nearly uniform in
         /// solid angle already and is the cheaper choice.
+        #[doc = concat!("For many samples from one point, [`TabulatedDiskSolidAngle`](crate::", stringify!($p), "::TabulatedDiskSolidAngle)")]
+        /// gives the same directions to a few ulps at a fraction of the
+        /// per-sample cost.
         ///
         /// # Disks below the horizon
         /// This sampler does not know the receiver's normal: a disk that crosses
@@ -132,7 +135,7 @@ macro_rules! disk_light_impl {
             cos_b: Real,
             pub(crate) ecc: Real,
             /// K(π/2) and Ω = 4ab K(π/2).
-            quarter: Real,
+            pub(crate) quarter: Real,
             solid_angle: Real,
         }
 
@@ -288,14 +291,14 @@ macro_rules! disk_light_impl {
 
             /// cos θₑ at the parametric angle with sin τ = n.
             #[inline]
-            fn rim_cos(&self, n: Real) -> Real {
+            pub(crate) fn rim_cos(&self, n: Real) -> Real {
                 (self.cos_a * self.cos_a + self.ecc * n * n).sqrt()
             }
 
             /// (sin τ, cos τ, steps) with K(τ) = `target` ∈ [0, K(π/2)], by
             /// Newton's method inside a bisection bracket (see the type's docs).
             #[inline]
-            fn solve(&self, target: Real) -> (Real, Real, usize) {
+            pub(crate) fn solve(&self, target: Real) -> (Real, Real, usize) {
                 let half_pi = 0.5 * PI;
                 let (mut lo, mut hi) = (0.0 as Real, half_pi);
                 // The linear guess lies right of the root (K is concave).
@@ -369,7 +372,7 @@ macro_rules! disk_light_impl {
 
             /// The quadrant and in-quadrant area target for u₀.
             #[inline]
-            fn quadrant(&self, u0: Real) -> (usize, Real) {
+            pub(crate) fn quadrant(&self, u0: Real) -> (usize, Real) {
                 let four = 4.0 * u0.clamp(0.0, 1.0);
                 let q = (four.floor() as usize).min(3);
                 let f = four - q as Real;
@@ -383,6 +386,14 @@ macro_rules! disk_light_impl {
             fn sample_local(&self, u: V2) -> (V3, usize) {
                 let (q, target) = self.quadrant(u.x);
                 let (n, m, steps) = self.solve(target);
+                (self.local_direction(q, n, m, u.y), steps)
+            }
+
+            /// The local direction (principal frame) in quadrant `q` at the
+            /// parametric angle with sin τ = n, cos τ = m, and 1 − cos θ a
+            /// fraction u₁ of its value on the rim.
+            #[inline]
+            pub(crate) fn local_direction(&self, q: usize, n: Real, m: Real, u1: Real) -> V3 {
                 let (sx, sy) = match q {
                     0 => (1.0, 1.0),
                     1 => (-1.0, 1.0),
@@ -393,7 +404,7 @@ macro_rules! disk_light_impl {
                 let re2 = px * px + py * py;
                 let re = re2.sqrt();
                 let ce = self.rim_cos(n);
-                let one_minus_cos = u.y.clamp(0.0, 1.0) * (re2 / (1.0 + ce));
+                let one_minus_cos = u1.clamp(0.0, 1.0) * (re2 / (1.0 + ce));
                 let cos_t = 1.0 - one_minus_cos;
                 let sin_t = (one_minus_cos * (2.0 - one_minus_cos)).max(0.0).sqrt();
                 let (lx, ly) = if re > 0.0 {
@@ -401,7 +412,20 @@ macro_rules! disk_light_impl {
                 } else {
                     (1.0, 0.0)
                 };
-                (V3::new(sx * sin_t * lx, sy * sin_t * ly, cos_t), steps)
+                V3::new(sx * sin_t * lx, sy * sin_t * ly, cos_t)
+            }
+
+            /// The light sample of the local direction `l`.
+            #[inline]
+            pub(crate) fn light_sample(&self, l: V3) -> LightSample {
+                let w = self.x_axis * l.x + self.y_axis * l.y + self.z_axis * l.z;
+                let distance = self.height / self.normal.dot(w);
+                LightSample {
+                    direction: w,
+                    pdf: 1.0 / self.solid_angle,
+                    point: self.reference + w * distance,
+                    distance,
+                }
             }
 
             /// The number of Newton steps [`DiskSolidAngle::sample`] takes
@@ -417,15 +441,7 @@ macro_rules! disk_light_impl {
             /// vector for which [`DiskSolidAngle::pdf`] returns 1/Ω.
             #[inline]
             pub fn sample(&self, u: V2) -> LightSample {
-                let (l, _) = self.sample_local(u);
-                let w = self.x_axis * l.x + self.y_axis * l.y + self.z_axis * l.z;
-                let distance = self.height / self.normal.dot(w);
-                LightSample {
-                    direction: w,
-                    pdf: 1.0 / self.solid_angle,
-                    point: self.reference + w * distance,
-                    distance,
-                }
+                self.light_sample(self.sample_local(u).0)
             }
 
             /// Whether the unit direction `w` points into the disk: inside

@@ -31,6 +31,7 @@ mod direction_sample;
 mod discrete;
 mod disk;
 mod disk_light;
+mod disk_table;
 pub mod error;
 mod hemisphere;
 mod horizon_clip;
@@ -72,6 +73,7 @@ macro_rules! public_api {
             pdf_uniform_disk, sample_concentric_disk, sample_uniform_disk,
         };
         pub use crate::disk_light::$p::{DiskLightSampler, DiskSolidAngle};
+        pub use crate::disk_table::$p::TabulatedDiskSolidAngle;
         pub use crate::hemisphere::$p::{
             invert_cosine_hemisphere, invert_uniform_hemisphere, pdf_cosine_hemisphere,
             pdf_uniform_hemisphere, sample_cosine_hemisphere, sample_cosine_hemisphere_batch,

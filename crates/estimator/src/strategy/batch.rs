@@ -26,7 +26,9 @@ use lambert_sampling::f64::{
 };
 
 use super::cone_mis::ConeMis;
-use super::emitter_light::{sample_cap, sample_disk, sample_polygon, sample_sky, sample_sphere};
+use super::emitter_light::{
+    sample_cap, sample_disk, sample_disk_table, sample_polygon, sample_sky, sample_sphere,
+};
 use super::{
     EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
 };
@@ -127,6 +129,18 @@ impl PreparedEmitter {
                 |w| e.radiance_toward(p, w),
                 #[inline(always)]
                 |u| sample_disk(d, u),
+                #[inline(always)]
+                |w| d.pdf(w),
+                &block,
+                out,
+            ),
+            (EmitterLight::DiskTable(d), Emitter::Disk(e)) => technique_batch(
+                self,
+                receiver,
+                #[inline(always)]
+                |w| e.radiance_toward(p, w),
+                #[inline(always)]
+                |u| sample_disk_table(d, u),
                 #[inline(always)]
                 |w| d.pdf(w),
                 &block,

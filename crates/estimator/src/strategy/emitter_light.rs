@@ -7,7 +7,8 @@ use lambert_light::emitter::Emitter;
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_uniform_sphere, sample_uniform_sphere, DiskLightSampler, DiskSolidAngle,
-    PolygonLightSampler, PolygonSolidAngle, SphereLightSampler, SphereSolidAngle, UniformCone,
+    PolygonLightSampler, PolygonSolidAngle, SphereLightSampler, SphereSolidAngle,
+    TabulatedDiskSolidAngle, UniformCone,
 };
 
 /// A direction toward a light with its density per steradian.
@@ -50,6 +51,9 @@ pub enum EmitterLight {
     Polygon(PolygonSolidAngle),
     /// A disk's spherical ellipse.
     Disk(DiskSolidAngle),
+    /// A disk's spherical ellipse with its inverse tabulated, for many
+    /// samples at the receiver ([`EmitterLight::for_many_samples`]).
+    DiskTable(TabulatedDiskSolidAngle),
     /// Nothing to sample (the emitter is invisible from here, or a delta
     /// light).
     None,
@@ -88,6 +92,18 @@ impl EmitterLight {
         }
     }
 
+    /// This sampler prepared for many samples at its receiver (an
+    /// estimate, not a renderer's few samples per shading point): a disk's
+    /// spherical ellipse gets its [`TabulatedDiskSolidAngle`], whose
+    /// samples cost a fraction of [`DiskSolidAngle`]'s for a build of tens
+    /// of samples' worth; the other kinds are unchanged.
+    pub fn for_many_samples(self) -> EmitterLight {
+        match self {
+            EmitterLight::Disk(d) => EmitterLight::DiskTable(TabulatedDiskSolidAngle::new(d)),
+            other => other,
+        }
+    }
+
     /// Whether every sample is known to see the emitter with its uniform
     /// radiance (a sphere's or a sky cap's cone), so that the radiance
     /// lookup can be skipped.
@@ -106,6 +122,7 @@ impl EmitterLight {
             EmitterLight::Cap(frame, cone) => sample_cap(frame, cone, u),
             EmitterLight::Polygon(p) => sample_polygon(p, u),
             EmitterLight::Disk(d) => sample_disk(d, u),
+            EmitterLight::DiskTable(d) => sample_disk_table(d, u),
             EmitterLight::None => None,
         }
     }
@@ -120,6 +137,7 @@ impl EmitterLight {
             EmitterLight::Cap(frame, cone) => cone.pdf(frame.to_local(w)),
             EmitterLight::Polygon(p) => p.pdf(w),
             EmitterLight::Disk(d) => d.pdf(w),
+            EmitterLight::DiskTable(d) => d.pdf(w),
             EmitterLight::None => 0.0,
         }
     }
@@ -170,6 +188,13 @@ pub(super) fn sample_polygon(p: &PolygonSolidAngle, u: DVec2) -> Option<LightDir
 /// [`EmitterLight::sample`] of a disk: its spherical ellipse.
 #[inline(always)]
 pub(super) fn sample_disk(d: &DiskSolidAngle, u: DVec2) -> Option<LightDirection> {
+    let l = d.sample(u);
+    checked(l.direction, l.pdf)
+}
+
+/// [`EmitterLight::sample`] of a tabulated disk: its spherical ellipse.
+#[inline(always)]
+pub(super) fn sample_disk_table(d: &TabulatedDiskSolidAngle, u: DVec2) -> Option<LightDirection> {
     let l = d.sample(u);
     checked(l.direction, l.pdf)
 }

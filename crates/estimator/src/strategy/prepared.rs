@@ -61,6 +61,14 @@ impl PreparedEmitter {
             technique = f.used;
             (projected, control) = ControlVariate::samplers_for(technique, emitter, receiver);
         }
+        // The techniques that draw light samples draw many at this one
+        // receiver: worth a disk's table.
+        let light = match technique {
+            Technique::Light | Technique::Mis(_) | Technique::ControlVariate => {
+                light.for_many_samples()
+            }
+            _ => light,
+        };
         let [first, second] = PartBound::of(
             technique,
             emitter,

@@ -26,7 +26,7 @@ use lambert_light::receiver::Receiver;
 use lambert_sampling::f32::{
     DiskAreaSampler, DiskSolidAngle, PolygonAreaSampler, PolygonLightSampler, PolygonSolidAngle,
     ProjectedCap, ProjectedPolygon, ProjectedPolygonSampler, ProjectedSphere, SphereAreaSampler,
-    SphereSolidAngle, UniformCone,
+    SphereSolidAngle, TabulatedDiskSolidAngle, UniformCone,
 };
 use std::fmt;
 
@@ -144,7 +144,8 @@ pub(super) enum Light {
     Cap(Frame, UniformCone),
     Sphere(SphereSolidAngle),
     Polygon(PolygonSolidAngle),
-    Disk(DiskSolidAngle),
+    /// Tabulated: this path is for many samples at one receiver.
+    Disk(TabulatedDiskSolidAngle),
     None,
 }
 
@@ -310,6 +311,7 @@ fn solid_angle(light: &EmitterLight) -> f64 {
         EmitterLight::Sphere(s) => s.solid_angle(),
         EmitterLight::Polygon(p) => p.solid_angle(),
         EmitterLight::Disk(d) => d.solid_angle(),
+        EmitterLight::DiskTable(d) => d.solid_angle(),
         EmitterLight::None => 0.0,
     }
 }
@@ -411,8 +413,10 @@ fn light_of(light: &EmitterLight, shape: &Shape, normal: Vec3) -> Result<Light, 
         (EmitterLight::Sphere(_), Shape::Sphere(sphere)) => {
             Light::Sphere(SphereSolidAngle::new(Vec3::ZERO, sphere).map_err(unbuildable)?)
         }
-        (EmitterLight::Disk(_), Shape::Disk(disk)) => {
-            Light::Disk(DiskSolidAngle::new(Vec3::ZERO, disk).map_err(unbuildable)?)
+        (EmitterLight::Disk(_) | EmitterLight::DiskTable(_), Shape::Disk(disk)) => {
+            Light::Disk(TabulatedDiskSolidAngle::new(
+                DiskSolidAngle::new(Vec3::ZERO, disk).map_err(unbuildable)?,
+            ))
         }
         (EmitterLight::Polygon(_), Shape::Polygon(polygon)) => {
             let sampler = PolygonLightSampler::new(polygon.clone()).map_err(unbuildable)?;

@@ -250,6 +250,7 @@ fn light_bound(light: &EmitterLight, l: f64) -> PartBound {
         EmitterLight::Sphere(s) => PartBound::bounded(l * s.solid_angle()),
         EmitterLight::Polygon(p) => PartBound::bounded(l * p.solid_angle()),
         EmitterLight::Disk(d) => PartBound::bounded(l * d.solid_angle()),
+        EmitterLight::DiskTable(d) => PartBound::bounded(l * d.solid_angle()),
         EmitterLight::None => PartBound::bounded(0.0),
     }
 }
