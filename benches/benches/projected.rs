@@ -3,7 +3,8 @@
 //! it replaces, in f32 and f64, RNG included (as in `warps`): uniform cone
 //! vs projected cap; sphere solid angle vs projected sphere; spherical
 //! triangle and rectangle vs projected polygon; disk area vs disk solid
-//! angle, plain and tabulated (`TabulatedDiskSolidAngle`); and, next to
+//! angle, plain and tabulated (`TabulatedDiskSolidAngle`, and
+//! `TabulatedProjectedPolygon` for the non-central square); and, next to
 //! the projected polygon, a prototype of Arvo's 2001 method
 //! (`lambert_benches::arvo`), the alternative to Peters' that the sampling
 //! crate measured and did not choose. Group `projected` samples from a
@@ -219,6 +220,15 @@ fn sampling(c: &mut Criterion) {
         |u| poff32.sample(u).direction,
         poff64.sample(u).direction
     );
+    // The same with its sectors' inverses tabulated (an estimate's many
+    // samples at one point).
+    let toff64 = s64::TabulatedProjectedPolygon::new(poff64);
+    let toff32 = s32::TabulatedProjectedPolygon::new(poff32);
+    both!(
+        "projected square (non-central) tabulated",
+        |u| toff32.sample(u).direction,
+        toff64.sample(u).direction
+    );
 
     // Disks.
     let (dc, dn, dr) = s.disk;
@@ -293,6 +303,13 @@ fn setup(c: &mut Criterion) {
     });
     g.bench_function("projected square (non-central) f64", |bch| {
         bch.iter(|| s64::ProjectedPolygon::new(black_box(DVec3::ZERO), DVec3::Z, &square))
+    });
+    g.bench_function("projected square (non-central) tabulated f64", |bch| {
+        bch.iter(|| {
+            s64::TabulatedProjectedPolygon::new(
+                s64::ProjectedPolygon::new(black_box(DVec3::ZERO), DVec3::Z, &square).unwrap(),
+            )
+        })
     });
     g.bench_function("disk solid angle f64", |bch| {
         bch.iter(|| s64::DiskSolidAngle::new(black_box(DVec3::ZERO), &disk))

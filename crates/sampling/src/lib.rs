@@ -42,6 +42,7 @@ mod polygon_light;
 mod projected_cap;
 mod projected_polygon;
 mod projected_sphere;
+mod projected_table;
 mod segment;
 pub mod sequence;
 mod soa;
@@ -86,6 +87,7 @@ macro_rules! public_api {
         pub use crate::projected_cap::$p::ProjectedCap;
         pub use crate::projected_polygon::$p::{ProjectedPolygon, ProjectedPolygonSampler};
         pub use crate::projected_sphere::$p::{ProjectedSphere, ProjectedSphereSampler};
+        pub use crate::projected_table::$p::TabulatedProjectedPolygon;
         pub use crate::sphere::$p::{
             invert_uniform_sphere, pdf_uniform_sphere, sample_uniform_sphere,
             sample_uniform_sphere_batch, sample_uniform_sphere_soa,

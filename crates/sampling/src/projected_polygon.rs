@@ -104,6 +104,9 @@ macro_rules! projected_polygon_impl {
         ///   evaluates the moment formula below: two corner cuts, two arc lengths).
         ///   Preparing a sampler for a shading point costs 2–4× preparing a
         ///   spherical triangle or rectangle.
+        #[doc = concat!("  For many samples from one point, [`TabulatedProjectedPolygon`](crate::", stringify!($p), "::TabulatedProjectedPolygon)")]
+        ///   starts each solve from a tabulated inverse and evaluates the area
+        ///   about half as often.
         ///
         /// The one weakness we found in Peters' formulation is numerical: away from
         /// the zenith a sector's area is the difference of two elliptic-sector areas
@@ -707,7 +710,7 @@ macro_rules! projected_polygon_impl {
 
             /// The sector and the area target within it for u₀.
             #[inline]
-            fn locate(&self, u0: Real) -> (usize, Real) {
+            pub(crate) fn locate(&self, u0: Real) -> (usize, Real) {
                 let target = u0.clamp(0.0, 1.0) * self.projected_solid_angle;
                 let mut k = 0;
                 while k + 1 < self.sectors && self.cumulative[k] <= target {
@@ -722,33 +725,105 @@ macro_rules! projected_polygon_impl {
             #[inline]
             fn sample_local(&self, u: V2) -> (V3, usize) {
                 let (k, target) = self.locate(u.x);
-                let u1 = u.y.clamp(0.0, 1.0);
                 if self.central {
-                    let m = self.edge_normal[self.start[k]];
-                    let mu = m.z;
-                    let gs = self.azimuth[k];
-                    let theta = (2.0 * target / mu).min(self.width[k]);
-                    let (s, c) = theta.sin_cos();
-                    let g = gs * c + V3::new(-gs.y, gs.x, 0.0) * s;
-                    let mxy = V3::new(m.x, m.y, 0.0);
-                    let mg = mxy.dot(g);
-                    let on_ellipse = g - mxy * (mg / (1.0 + mu));
-                    let r = u1.sqrt();
-                    let z2 = (1.0 - u1) + u1 * mg * mg;
-                    let p = on_ellipse * r;
-                    (V3::new(p.x, p.y, z2.sqrt()), 0)
+                    (self.central_local(k, target, u.y), 0)
                 } else {
                     let (delta, i, o, steps) = self.solve(k, target);
-                    let gap = self.height_gap(k, &i, &o);
-                    let zi2 = i.direction.z * i.direction.z;
-                    let ri2 = i.direction.x * i.direction.x + i.direction.y * i.direction.y;
-                    let r2 = ri2 + u1 * gap;
-                    let z2 = (zi2 - u1 * gap).max(0.0);
-                    let da = self.azimuth[k];
-                    let (sin_d, cos_d) = delta.sin_cos();
-                    let d = da * cos_d + V3::new(-da.y, da.x, 0.0) * sin_d;
-                    let r = r2.sqrt();
-                    (V3::new(d.x * r, d.y * r, z2.sqrt()), steps)
+                    (self.sector_local(k, delta, &i, &o, u.y), steps)
+                }
+            }
+
+            /// Whether the sectors are central (no solve: see the type's
+            /// docs).
+            #[inline]
+            pub(crate) fn central(&self) -> bool {
+                self.central
+            }
+
+            /// The number of sectors, and sector k's angular width and area.
+            #[inline]
+            pub(crate) fn sector_shape(&self, k: usize) -> (usize, Real, Real) {
+                let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
+                (self.sectors, self.width[k], self.cumulative[k] - before)
+            }
+
+            /// The light sample for area `target` in non-central sector k
+            /// and u₁, solving from the first azimuth `delta`, and the
+            /// Newton steps taken.
+            #[inline]
+            pub(crate) fn sample_sector(
+                &self,
+                k: usize,
+                target: Real,
+                delta: Real,
+                u1: Real,
+            ) -> (LightSample, usize) {
+                let (delta, i, o, steps) = self.solve_from(k, target, delta);
+                (self.light_sample(self.sector_local(k, delta, &i, &o, u1)), steps)
+            }
+
+            /// The azimuth δ past the start of non-central sector k where
+            /// its area is `target`, and the area's slope dA/dδ there.
+            pub(crate) fn root_and_slope(&self, k: usize, target: Real) -> (Real, Real) {
+                let (delta, i, o, _) = self.solve(k, target);
+                (delta, 0.5 * self.height_gap(k, &i, &o))
+            }
+
+            /// The slope dA/dδ of non-central sector k's area at δ.
+            pub(crate) fn slope_at(&self, k: usize, delta: Real) -> Real {
+                let (i, o) = self.corners(k, delta);
+                0.5 * self.height_gap(k, &i, &o)
+            }
+
+            /// The local direction in central sector k at area `target`
+            /// past its start, a fraction u₁ of the way out.
+            #[inline]
+            fn central_local(&self, k: usize, target: Real, u1: Real) -> V3 {
+                let u1 = u1.clamp(0.0, 1.0);
+                let m = self.edge_normal[self.start[k]];
+                let mu = m.z;
+                let gs = self.azimuth[k];
+                let theta = (2.0 * target / mu).min(self.width[k]);
+                let (s, c) = theta.sin_cos();
+                let g = gs * c + V3::new(-gs.y, gs.x, 0.0) * s;
+                let mxy = V3::new(m.x, m.y, 0.0);
+                let mg = mxy.dot(g);
+                let on_ellipse = g - mxy * (mg / (1.0 + mu));
+                let r = u1.sqrt();
+                let z2 = (1.0 - u1) + u1 * mg * mg;
+                let p = on_ellipse * r;
+                V3::new(p.x, p.y, z2.sqrt())
+            }
+
+            /// The local direction in non-central sector k at azimuth δ past
+            /// its start (corners `i`, `o` there), a fraction u₁ of the
+            /// projected area from the inner to the outer edge.
+            #[inline]
+            fn sector_local(&self, k: usize, delta: Real, i: &Corner, o: &Corner, u1: Real) -> V3 {
+                let u1 = u1.clamp(0.0, 1.0);
+                let gap = self.height_gap(k, i, o);
+                let zi2 = i.direction.z * i.direction.z;
+                let ri2 = i.direction.x * i.direction.x + i.direction.y * i.direction.y;
+                let r2 = ri2 + u1 * gap;
+                let z2 = (zi2 - u1 * gap).max(0.0);
+                let da = self.azimuth[k];
+                let (sin_d, cos_d) = delta.sin_cos();
+                let d = da * cos_d + V3::new(-da.y, da.x, 0.0) * sin_d;
+                let r = r2.sqrt();
+                V3::new(d.x * r, d.y * r, z2.sqrt())
+            }
+
+            /// The light sample of the local direction `l`.
+            #[inline]
+            fn light_sample(&self, mut l: V3) -> LightSample {
+                l.z = l.z.max(4.0 * Real::EPSILON);
+                let w = self.frame.from_local(l);
+                let distance = self.plane_offset / self.plane_normal.dot(w);
+                LightSample {
+                    direction: w,
+                    pdf: self.pdf_of(self.frame.z.dot(w)),
+                    point: self.reference + w * distance,
+                    distance,
                 }
             }
 
@@ -757,10 +832,15 @@ macro_rules! projected_polygon_impl {
             /// steps taken.
             #[inline]
             fn solve(&self, k: usize, target: Real) -> (Real, Corner, Corner, usize) {
+                self.solve_from(k, target, self.initial_guess(k, target))
+            }
+
+            /// The first δ of [`Self::solve`] for area `target` in sector k.
+            #[inline]
+            pub(crate) fn initial_guess(&self, k: usize, target: Real) -> Real {
                 let width = self.width[k];
                 let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
                 let size = self.cumulative[k] - before;
-                let (mut lo, mut hi) = (0.0 as Real, width);
                 // Initial guess from a quadratic model of A/A_k in x = δ/Δ,
                 // fitted at the nearer end: τ ≈ αx + (1 − α)x² with α the
                 // start slope over the mean slope, or, for τ > ½, the same in
@@ -788,7 +868,21 @@ macro_rules! projected_polygon_impl {
                 } else {
                     1.0 - quadratic(self.shape_end[k], 1.0 - fraction)
                 };
-                let mut delta = width * x.clamp(0.0, 1.0);
+                width * x.clamp(0.0, 1.0)
+            }
+
+            /// [`Self::solve`] from the first δ `delta` ∈ [0, Δ].
+            #[inline]
+            fn solve_from(
+                &self,
+                k: usize,
+                target: Real,
+                delta: Real,
+            ) -> (Real, Corner, Corner, usize) {
+                let width = self.width[k];
+                let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
+                let (mut lo, mut hi) = (0.0 as Real, width);
+                let mut delta = delta.clamp(0.0, width);
                 let mut steps = 0;
                 loop {
                     let (area, scale, i, o) = self.sector_area_and_scale(k, delta);
@@ -890,16 +984,7 @@ macro_rules! projected_polygon_impl {
             /// [`ProjectedPolygon::pdf`] returns the same density.
             #[inline]
             pub fn sample(&self, u: V2) -> LightSample {
-                let (mut l, _) = self.sample_local(u);
-                l.z = l.z.max(4.0 * Real::EPSILON);
-                let w = self.frame.from_local(l);
-                let distance = self.plane_offset / self.plane_normal.dot(w);
-                LightSample {
-                    direction: w,
-                    pdf: self.pdf_of(self.frame.z.dot(w)),
-                    point: self.reference + w * distance,
-                    distance,
-                }
+                self.light_sample(self.sample_local(u).0)
             }
 
             /// cos θ = n·w of the unit world direction `w`, n the

@@ -69,6 +69,11 @@ impl PreparedEmitter {
             }
             _ => light,
         };
+        // Projected sampling likewise (the control variate without
+        // occluders returns its closed form and draws nothing).
+        if technique == Technique::Projected {
+            projected = projected.for_many_samples();
+        }
         let [first, second] = PartBound::of(
             technique,
             emitter,

@@ -26,7 +26,7 @@ use lambert_light::receiver::Receiver;
 use lambert_sampling::f32::{
     DiskAreaSampler, DiskSolidAngle, PolygonAreaSampler, PolygonLightSampler, PolygonSolidAngle,
     ProjectedCap, ProjectedPolygon, ProjectedPolygonSampler, ProjectedSphere, SphereAreaSampler,
-    SphereSolidAngle, TabulatedDiskSolidAngle, UniformCone,
+    SphereSolidAngle, TabulatedDiskSolidAngle, TabulatedProjectedPolygon, UniformCone,
 };
 use std::fmt;
 
@@ -164,7 +164,8 @@ pub(super) enum Projected {
     Sky,
     Cap(ProjectedCap),
     Sphere(ProjectedSphere),
-    Polygon(Box<ProjectedPolygon>),
+    /// Tabulated: this path is for many samples at one receiver.
+    Polygon(Box<TabulatedProjectedPolygon>),
     PolygonFan(ProjectedPolygonSampler),
     None,
 }
@@ -466,11 +467,17 @@ fn projected_of(
             let omega = f64::from(sampler.projected_solid_angle());
             (Projected::Sphere(sampler), ulps(omega))
         }
-        (EmitterProjected::Polygon(_), Shape::Polygon(polygon)) => {
+        (
+            EmitterProjected::Polygon(_) | EmitterProjected::PolygonTable(_),
+            Shape::Polygon(polygon),
+        ) => {
             let sampler = ProjectedPolygon::new(Vec3::ZERO, n, polygon).map_err(unbuildable)?;
             let error = f64::from(sampler.projected_solid_angle_error())
                 + ulps(f64::from(sampler.projected_solid_angle()));
-            (Projected::Polygon(Box::new(sampler)), error)
+            (
+                Projected::Polygon(Box::new(TabulatedProjectedPolygon::new(sampler))),
+                error,
+            )
         }
         (EmitterProjected::PolygonFan(_, _, omega), Shape::Polygon(polygon)) => (
             Projected::PolygonFan(ProjectedPolygonSampler::new(polygon.clone())),
