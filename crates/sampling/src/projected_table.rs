@@ -146,7 +146,8 @@ macro_rules! projected_table_impl {
             #[inline]
             fn sample_and_steps(&self, u: V2) -> (LightSample, usize) {
                 if self.nodes.is_empty() {
-                    return (self.polygon.sample(u), self.polygon.newton_steps(u));
+                    // Central: no solve, no steps.
+                    return (self.polygon.sample(u), 0);
                 }
                 let (k, target) = self.polygon.locate(u.x);
                 let guess = self.guess(k, target);
