@@ -291,7 +291,9 @@ macro_rules! disk_table_impl {
                 let r = 1.0 - s;
                 let guess = (a.tau * (1.0 + 2.0 * s) + dk * a.slope * s) * r * r
                     + (b.tau * (3.0 - 2.0 * s) - dk * b.slope * r) * s * s;
-                let x = (guess - a.tau).clamp(0.0, b.tau - a.tau);
+                // max/min, not clamp, which panics on unordered or NaN
+                // bounds (degenerate geometry).
+                let x = (guess - a.tau).max(0.0).min(b.tau - a.tau);
                 // K(τⱼ + x) by the interval's rule.
                 let mut sum = 0.0;
                 for &(y, w) in GAUSS_LEGENDRE[a.gauss as usize] {

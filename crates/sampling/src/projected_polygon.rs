@@ -882,7 +882,8 @@ macro_rules! projected_polygon_impl {
                 let width = self.width[k];
                 let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
                 let (mut lo, mut hi) = (0.0 as Real, width);
-                let mut delta = delta.clamp(0.0, width);
+                // Not clamp: a NaN width must not panic.
+                let mut delta = delta.max(0.0).min(width);
                 let mut steps = 0;
                 loop {
                     let (area, scale, i, o) = self.sector_area_and_scale(k, delta);

@@ -178,7 +178,10 @@ macro_rules! projected_table_impl {
                 let r = 1.0 - s;
                 let guess = (a.delta * (1.0 + 2.0 * s) + da / a.slope * s) * r * r
                     + (b.delta * (3.0 - 2.0 * s) - da / b.slope * r) * s * s;
-                guess.clamp(a.delta, b.delta)
+                // max/min, not clamp: degenerate geometry (fuzz case
+                // `projected-table-unordered-nodes`) may leave the nodes
+                // unordered or NaN, which clamp would panic on.
+                guess.max(a.delta).min(b.delta)
             }
         }
     };
