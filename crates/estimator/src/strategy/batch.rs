@@ -316,8 +316,8 @@ fn technique_batch(
             },
         ),
         Technique::Light => {
-            let always_hits = emitter.light.always_hits();
-            let uniform = emitter.uniform_radiance();
+            let always_hits = emitter.light_radiance.is_some();
+            let uniform = emitter.light_radiance.unwrap_or(0.0);
             single(
                 out,
                 #[inline(always)]
@@ -370,6 +370,7 @@ fn technique_batch(
         Technique::Mis(h) => mis_batch(
             h,
             receiver,
+            emitter.light_radiance,
             radiance_cos,
             light_sample,
             light_pdf,
@@ -389,6 +390,7 @@ fn technique_batch(
 fn mis_batch(
     h: Heuristic,
     receiver: &Receiver,
+    light_radiance: Option<f64>,
     radiance_cos: impl Fn(DVec3) -> f64,
     light_sample: impl Fn(DVec2) -> Option<LightDirection>,
     light_pdf: impl Fn(DVec3) -> f64,
@@ -396,6 +398,8 @@ fn mis_batch(
     out: &mut [f64],
 ) -> PartHits {
     let frame = &{ receiver.frame };
+    let normal = receiver.normal;
+    let (known_radiance, uniform) = (light_radiance.is_some(), light_radiance.unwrap_or(0.0));
     let mut hits = [0u64; 2];
     for (i, o) in out.iter_mut().enumerate() {
         let local = sample_cosine_hemisphere(block.u(i));
@@ -416,7 +420,13 @@ fn mis_batch(
         };
         let local = frame.to_local(s.direction);
         let p_cos = pdf_cosine_hemisphere(local);
-        let l_cos = radiance_cos(s.direction);
+        // The lookup is skipped where every light sample sees the
+        // emitter (`light_sample_radiance`), as in `mis_parts`.
+        let l_cos = if known_radiance {
+            uniform * s.direction.dot(normal).max(0.0)
+        } else {
+            radiance_cos(s.direction)
+        };
         let weighted = h.weighted(l_cos, s.pdf, p_cos);
         let light = if drawn { weighted } else { 0.0 };
         hits[0] += u64::from(cosine != 0.0);
