@@ -316,7 +316,7 @@ fn technique_batch(
             },
         ),
         Technique::Light => {
-            let always_hits = emitter.light_radiance.is_some();
+            let known_radiance = emitter.light_radiance.is_some();
             let uniform = emitter.light_radiance.unwrap_or(0.0);
             single(
                 out,
@@ -327,7 +327,7 @@ fn technique_batch(
                         Some(s) => (s, true),
                         None => (NO_LIGHT_DIRECTION, false),
                     };
-                    let v = if always_hits {
+                    let v = if known_radiance {
                         uniform * s.direction.dot(normal).max(0.0) / s.pdf
                     } else {
                         radiance_cos(s.direction) / s.pdf

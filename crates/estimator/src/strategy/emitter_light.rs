@@ -104,14 +104,6 @@ impl EmitterLight {
         }
     }
 
-    /// Whether every sample is known to see the emitter with its uniform
-    /// radiance (a sphere's or a sky cap's cone), so that the radiance
-    /// lookup can be skipped.
-    #[inline]
-    pub fn always_hits(&self) -> bool {
-        matches!(self, EmitterLight::Sphere(_) | EmitterLight::Cap(..))
-    }
-
     /// A direction and its density per steradian, or `None` (nothing to
     /// sample, or a sample of zero or non-finite density).
     #[inline]

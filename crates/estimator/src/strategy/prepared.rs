@@ -128,10 +128,9 @@ impl PreparedEmitter {
         self.evaluate_u(receiver, u, u2)
     }
 
-    /// The emitter's radiance when every light sample sees it
-    /// ([`EmitterLight::always_hits`]), and every projected sample
-    /// ([`EmitterProjected`] samples only what the receiver sees of the
-    /// emitter's lit side).
+    /// The radiance every projected sample sees ([`EmitterProjected`]
+    /// samples only what the receiver sees of the emitter's lit side);
+    /// light samples take theirs from `light_radiance`.
     pub(super) fn uniform_radiance(&self) -> f64 {
         match &self.emitter {
             Emitter::Sphere(s) => s.radiance,
@@ -328,8 +327,7 @@ impl PreparedEmitter {
 
 /// The radiance that every direction drawn by `light` at `receiver` sees,
 /// when it is known without looking the emitter up:
-/// - a sphere's or a sky cap's cone lies wholly on the emitter
-///   ([`EmitterLight::always_hits`]);
+/// - a sphere's or a sky cap's cone lies wholly on the emitter;
 /// - a polygon's or a disk's solid-angle sampler draws directions inside
 ///   the shape seen from the receiver, so each one meets it; the emitting
 ///   side faces every such direction when the light is two-sided or the
