@@ -58,16 +58,60 @@ impl Block<'_> {
     }
 }
 
+/// Samples per pass of [`accumulate`]'s two loops: their f32 parts (2 KB)
+/// stay in the first-level cache between the loops.
+const SPAN: usize = 256;
+
+/// `out[i] += L·g(i)` with `g(i)` the sum of a sample's `P` parts, formed
+/// in f32 and widened to f64; returns how many samples had each part
+/// non-zero (at most two parts).
+///
+/// Two loops per [`SPAN`] samples: the first forms the parts and their
+/// sum in f32 and counts the non-zero parts in 32-bit lanes, the second
+/// adds the sums to the f64 values. A single loop that also touched the
+/// f64 values ran with as many lanes as f64 has: half those an f32 vector
+/// holds, so the f32 arithmetic ran at half width (measured: 4-lane `xmm`
+/// f32 code under AVX2). The values are the same to the bit.
+#[inline(always)]
+fn accumulate<const P: usize>(
+    radiance: f64,
+    out: &mut [f64],
+    parts: impl Fn(usize) -> [f32; P],
+) -> PartHits {
+    const { assert!(P == 1 || P == 2) };
+    let mut hits = [0u64; 2];
+    let mut sums = [0.0f32; SPAN];
+    for (span, out) in out.chunks_mut(SPAN).enumerate() {
+        let sums = &mut sums[..out.len()];
+        let mut counts = [0u32; 2];
+        for (k, sum) in sums.iter_mut().enumerate() {
+            let g = parts(span * SPAN + k);
+            counts[0] += u32::from(g[0] != 0.0);
+            *sum = if P == 1 {
+                g[0]
+            } else {
+                counts[1] += u32::from(g[P - 1] != 0.0);
+                g[0] + g[P - 1]
+            };
+        }
+        for (o, &g) in out.iter_mut().zip(sums.iter()) {
+            *o += radiance * f64::from(g);
+        }
+        hits[0] += u64::from(counts[0]);
+        hits[1] += u64::from(counts[1]);
+    }
+    hits
+}
+
 /// `out[i] += L·g(i)` (g widened to f64), counting the non-zero g.
 #[inline(always)]
 fn single(radiance: f64, out: &mut [f64], g: impl Fn(usize) -> f32) -> PartHits {
-    let mut hits = 0u64;
-    for (i, o) in out.iter_mut().enumerate() {
-        let v = g(i);
-        hits += u64::from(v != 0.0);
-        *o += radiance * f64::from(v);
-    }
-    [hits, 0]
+    accumulate(
+        radiance,
+        out,
+        #[inline(always)]
+        |i| [g(i)],
+    )
 }
 
 /// cos θ/p of a direction drawn with density `pdf`, 0 if cos θ ≤ 0 or the
@@ -388,15 +432,15 @@ impl PreparedEmitterF32 {
             _ => None,
         };
         if let (Some(cone), true) = (cone, self.lit) {
-            let radiance = self.radiance;
-            let mut hits = [0u64; 2];
-            for (i, o) in out.iter_mut().enumerate() {
-                let (cosine, light) = cone.parts(h, block.u(i), block.v(i));
-                hits[0] += u64::from(cosine != 0.0);
-                hits[1] += u64::from(light != 0.0);
-                *o += radiance * f64::from(cosine + light);
-            }
-            return hits;
+            return accumulate(
+                self.radiance,
+                out,
+                #[inline(always)]
+                |i| {
+                    let (cosine, light) = cone.parts(h, block.u(i), block.v(i));
+                    [cosine, light]
+                },
+            );
         }
         match &self.light {
             Light::Sky => self.mis_loop(
@@ -486,28 +530,29 @@ impl PreparedEmitterF32 {
         out: &mut [f64],
     ) -> PartHits {
         let (frame, normal, radiance, lit) = (&self.frame, self.normal, self.radiance, self.lit);
-        let mut hits = [0u64; 2];
-        for (i, o) in out.iter_mut().enumerate() {
-            let local = sample_cosine_hemisphere(block.u(i));
-            let w = frame.from_local(local);
-            let p_cos = pdf_cosine_hemisphere(local);
-            let cos = normal.dot(w);
-            let cosine = if p_cos > 0.0 && cos > 0.0 && sees(w) {
-                h.weighted_f32(cos, p_cos, light_pdf(w))
-            } else {
-                0.0
-            };
-            let (dir, p_light) = light_sample(block.v(i));
-            let p_cos = pdf_cosine_hemisphere(frame.to_local(dir));
-            let light = if lit {
-                h.weighted_f32(normal.dot(dir).max(0.0), p_light, p_cos)
-            } else {
-                0.0
-            };
-            hits[0] += u64::from(cosine != 0.0);
-            hits[1] += u64::from(light != 0.0);
-            *o += radiance * f64::from(cosine + light);
-        }
-        hits
+        accumulate(
+            radiance,
+            out,
+            #[inline(always)]
+            |i| {
+                let local = sample_cosine_hemisphere(block.u(i));
+                let w = frame.from_local(local);
+                let p_cos = pdf_cosine_hemisphere(local);
+                let cos = normal.dot(w);
+                let cosine = if p_cos > 0.0 && cos > 0.0 && sees(w) {
+                    h.weighted_f32(cos, p_cos, light_pdf(w))
+                } else {
+                    0.0
+                };
+                let (dir, p_light) = light_sample(block.v(i));
+                let p_cos = pdf_cosine_hemisphere(frame.to_local(dir));
+                let light = if lit {
+                    h.weighted_f32(normal.dot(dir).max(0.0), p_light, p_cos)
+                } else {
+                    0.0
+                };
+                [cosine, light]
+            },
+        )
     }
 }
