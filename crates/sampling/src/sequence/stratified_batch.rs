@@ -89,8 +89,13 @@ impl Domain {
     }
 
     /// Whole-block rounds of [`Domain::permute_block`]'s walk before the
-    /// lanes still outside are listed.
-    const VECTOR_ROUNDS: usize = 4;
+    /// lanes still outside are listed. One: after the first step fewer than
+    /// half the lanes are outside and after one more round fewer than a
+    /// quarter, so a further whole-block round steps mostly lanes already
+    /// inside; listing the few left and stepping only them measured ~4 %
+    /// faster per sample than four rounds (stratified MIS on the sphere
+    /// light, f32 and f64, 5·10^7 samples), with the same values.
+    const VECTOR_ROUNDS: usize = 1;
 
     /// Whether `n = 2^w`: then the walk's bijection of `0..2^w` is already
     /// a permutation of `0..n`, and no value ever falls outside (every `n`
@@ -154,10 +159,10 @@ impl Domain {
             // would cost as much as the step itself.
             return;
         }
-        // A few rounds over the whole block, stepping only the lanes still
+        // Rounds over the whole block, stepping only the lanes still
         // outside 0..n (a select, so they vectorise): each round leaves
         // outside a fraction below ½ (`2^w < 2N`) of those it found, so
-        // after them few lanes walk on, and often none.
+        // after them few lanes walk on, and sometimes none.
         for _ in 0..Self::VECTOR_ROUNDS {
             for (k, x) in x.iter_mut().enumerate() {
                 let stepped = self.step(*x, keys(k));
