@@ -14,9 +14,20 @@
 //! - the **light-sampled** direction ω′ stays in the cone's frame, where the
 //!   receiver's normal n′ gives cos θ = n′·ω′ and p_c = max(cos θ, 0)/π.
 //!
-//! The two halves then share one division ([`Heuristic::weighted_pair`]). Neither
-//! direction is rotated into the world, nor is a density evaluated by a
-//! test against the emitter.
+//! The two halves then share one division (as in [`Heuristic::weighted_pair`]).
+//! Neither direction is rotated into the world, nor is a density evaluated by
+//! a test against the emitter.
+//!
+//! The weights rescale both densities by one power of two, fixed per cone:
+//! the one that brings max(1/Ω, 1/π), an upper bound of every density here,
+//! into [1, 2) ([`Heuristic::weighted`] picks it per sample from the two
+//! densities at hand). A power of two commutes with rounding in the normal
+//! range, so the values are those of the per-sample scaling to the bit; what
+//! goes is the per-sample exponent extraction, clamp and guards. With the
+//! light density scaled into [1/4, 2), neither half's denominator can
+//! underflow or overflow where the direction sees the emitter, and a
+//! cosine-sampled direction that misses it has value 0 (1 stands in for a
+//! denominator of 0 there).
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
@@ -25,7 +36,7 @@ use super::Heuristic;
 /// `ConeMis` (f64) and `ConeMisF32` (the f32 estimator's, whose values
 /// leave the radiance out: it multiplies the sum by L in f64).
 macro_rules! cone_mis {
-    ($name:ident, $real:ident, $v2:ty, $v3:ty, $p:ident, $pair:expr) => {
+    ($name:ident, $real:ident, $v2:ty, $v3:ty, $p:ident, $scale:path, $pair:expr) => {
         /// One receiver's view of a uniform cone emitter, ready for MIS
         /// samples (module docs).
         #[derive(Clone, Copy, Debug)]
@@ -42,8 +53,15 @@ macro_rules! cone_mis {
             /// `UniformCone::pdf` widens its rim): |ω − a|² ≤ this is
             /// inside.
             rim: $real,
-            /// The light density 1/Ω per steradian.
+            /// The power of two that brings max(1/Ω, 1/π) into [1, 2), by
+            /// which both densities are scaled (module docs).
+            scale: $real,
+            /// The light density 1/Ω per steradian, times `scale`.
             light_pdf: $real,
+            /// Whether 1/Ω is a positive finite density (a cone so small
+            /// that 1/Ω overflows has none, and contributes 0 by either
+            /// half, as [`Heuristic::weighted`] gives for such a density).
+            drawn: bool,
         }
 
         impl $name {
@@ -57,56 +75,87 @@ macro_rules! cone_mis {
                 cone: &lambert_sampling::$p::UniformCone,
                 receiver: &lambert_geometry::$p::Frame,
             ) -> Self {
+                let light_pdf = 1.0 / cone.solid_angle();
+                let scale = $scale(light_pdf.max(1.0 / std::$real::consts::PI));
                 $name {
                     radiance,
                     cone: *cone,
                     axis: receiver.to_local(cone_frame.z),
                     normal: cone_frame.to_local(receiver.z),
                     rim: 2.0 * cone.one_minus_cos_theta_max() * (1.0 + 8.0 * $real::EPSILON),
-                    light_pdf: 1.0 / cone.solid_angle(),
+                    scale,
+                    light_pdf: light_pdf * scale,
+                    drawn: light_pdf > 0.0 && light_pdf < $real::INFINITY,
                 }
             }
 
             /// The weighted values of the cosine-sampled direction from
             /// `u` and of the light-sampled one from `v` (each 0 where its
-            /// direction misses the emitter or lies below the horizon).
+            /// direction misses the emitter or lies below the horizon):
+            /// w·f/p = N/D·scale with, for the power heuristic,
+            /// N = f·a and D = a² + b² (balance: N = f, D = a + b), a the
+            /// scaled density of the sample's own technique and b the
+            /// other's.
             #[inline(always)]
             pub(super) fn parts(&self, h: Heuristic, u: $v2, v: $v2) -> ($real, $real) {
                 use lambert_sampling::$p::{pdf_cosine_hemisphere, sample_cosine_hemisphere};
+                let quotient = |f: $real, a: $real, b: $real| match h {
+                    Heuristic::Balance => (f, a + b),
+                    Heuristic::Power => (f * a, a * a + b * b),
+                };
                 let w = sample_cosine_hemisphere(u);
-                let p_cos = pdf_cosine_hemisphere(w);
+                let p_cos = pdf_cosine_hemisphere(w) * self.scale;
                 let inside = (w - self.axis).length_squared() <= self.rim;
                 let (l_cos, p_light) = if inside {
                     (self.radiance * w.z, self.light_pdf)
                 } else {
                     (0.0, 0.0)
                 };
+                let (n_cos, d_cos) = quotient(l_cos, p_cos, p_light);
+                // D = 0 only outside the cone (inside, D ≥ b² > 0), where
+                // N = 0 too: 1 stands in, so that the value is 0, not NaN,
+                // and cannot spoil a division the halves share.
+                let d_cos = if d_cos > 0.0 { d_cos } else { 1.0 };
                 let cos = self.normal.dot(self.cone.sample(v)).max(0.0);
-                $pair(
-                    h,
-                    (l_cos, p_cos, p_light),
-                    (
-                        self.radiance * cos,
-                        self.light_pdf,
-                        cos * (1.0 / std::$real::consts::PI),
-                    ),
-                )
+                let (n_light, d_light) = quotient(
+                    self.radiance * cos,
+                    self.light_pdf,
+                    cos * (1.0 / std::$real::consts::PI) * self.scale,
+                );
+                let (c, l) = $pair((n_cos, d_cos), (n_light, d_light), self.scale);
+                if self.drawn {
+                    (c, l)
+                } else {
+                    (0.0, 0.0)
+                }
             }
         }
     };
 }
 
-cone_mis!(ConeMis, f64, DVec2, DVec3, f64, Heuristic::weighted_pair);
+// f64: one division for both halves, r = 1/(D₁D₂), N₁/D₁ = N₁·D₂r and
+// N₂/D₂ = N₂·D₁r (as `Heuristic::weighted_pair`, whose values these are).
+cone_mis!(
+    ConeMis,
+    f64,
+    DVec2,
+    DVec3,
+    f64,
+    super::scale_to_unit,
+    |(n1, d1): (f64, f64), (n2, d2): (f64, f64), s: f64| {
+        let r = 1.0 / (d1 * d2);
+        (n1 * (d2 * r) * s, n2 * (d1 * r) * s)
+    }
+);
+// f32: a division each (the values of `Heuristic::weighted_f32`).
 cone_mis!(
     ConeMisF32,
     f32,
     Vec2,
     Vec3,
     f32,
-    |h: Heuristic, a: (f32, f32, f32), b: (f32, f32, f32)| (
-        h.weighted_f32(a.0, a.1, a.2),
-        h.weighted_f32(b.0, b.1, b.2)
-    )
+    super::scale_to_unit_f32,
+    |(n1, d1): (f32, f32), (n2, d2): (f32, f32), s: f32| (n1 / d1 * s, n2 / d2 * s)
 );
 
 #[cfg(test)]
@@ -161,6 +210,68 @@ mod tests {
         }
         // Both outcomes of the cone test were exercised.
         assert!(inside > 50 && inside < 750, "{inside}");
+    }
+
+    /// The weights with the scale fixed per cone are those of the scale
+    /// picked per sample ([`Heuristic::weighted_pair`] in f64, two
+    /// [`Heuristic::weighted_f32`] in f32) to the bit: for a wide cone
+    /// (1/Ω < 1/π, scale set by the cosine density's bound), a middling and
+    /// a narrow one, both heuristics, both outcomes of the cone test.
+    #[test]
+    fn the_fixed_scale_gives_the_per_sample_values_exactly() {
+        use lambert_geometry::f32::Frame as Frame32;
+        use lambert_sampling::f32::{
+            pdf_cosine_hemisphere as pdf_cos32, sample_cosine_hemisphere as cos32,
+            UniformCone as Cone32,
+        };
+        use std::f64::consts::PI;
+        let receiver = Frame::from_normal(DVec3::new(0.1, 0.2, 0.95).normalize());
+        let axis = DVec3::new(0.3, -0.2, 0.8).normalize();
+        let cone_frame = Frame::from_normal(axis);
+        let receiver32 = Frame32::from_normal(receiver.z.as_vec3());
+        let cone_frame32 = Frame32::from_normal(axis.as_vec3());
+        for theta_max in [1.4, 0.5, 0.01] {
+            let cone = UniformCone::from_theta_max(theta_max).unwrap();
+            let cone32 = Cone32::from_theta_max(theta_max as f32).unwrap();
+            let m = ConeMis::new(1.5, &cone_frame, &cone, &receiver);
+            let m32 = ConeMisF32::new(1.5, &cone_frame32, &cone32, &receiver32);
+            let (p_l, p_l32) = (1.0 / cone.solid_angle(), 1.0 / cone32.solid_angle());
+            let (a, a32) = (m.axis, m32.axis);
+            let (rim, rim32) = (m.rim, m32.rim);
+            let (n, n32) = (m.normal, m32.normal);
+            let mut inside = [0usize; 2];
+            for i in 0..2000u32 {
+                let u = DVec2::new(
+                    (f64::from(i) + 0.5) / 2000.0,
+                    (f64::from(i * 761 % 2000) + 0.5) / 2000.0,
+                );
+                let v = DVec2::new(u.y, u.x);
+                for h in [Heuristic::Balance, Heuristic::Power] {
+                    let w = sample_cosine_hemisphere(u);
+                    let hit = (w - a).length_squared() <= rim;
+                    inside[usize::from(hit)] += 1;
+                    let (l_cos, p_light) = if hit { (1.5 * w.z, p_l) } else { (0.0, 0.0) };
+                    let cos = n.dot(cone.sample(v)).max(0.0);
+                    let want = h.weighted_pair(
+                        (l_cos, pdf_cosine_hemisphere(w), p_light),
+                        (1.5 * cos, p_l, cos * (1.0 / PI)),
+                    );
+                    assert_eq!(m.parts(h, u, v), want, "{h:?} θ {theta_max} u {u}");
+                    let (u32_, v32) = (u.as_vec2(), v.as_vec2());
+                    let w = cos32(u32_);
+                    let hit = (w - a32).length_squared() <= rim32;
+                    let (l_cos, p_light) = if hit { (1.5 * w.z, p_l32) } else { (0.0, 0.0) };
+                    let cos = n32.dot(cone32.sample(v32)).max(0.0);
+                    let want = (
+                        h.weighted_f32(l_cos, pdf_cos32(w), p_light),
+                        h.weighted_f32(1.5 * cos, p_l32, cos * (1.0 / std::f32::consts::PI)),
+                    );
+                    assert_eq!(m32.parts(h, u32_, v32), want, "f32 {h:?} θ {theta_max}");
+                }
+            }
+            // Both outcomes of the cone test were exercised.
+            assert!(inside[0] > 0 && inside[1] > 0, "θ {theta_max}: {inside:?}");
+        }
     }
 
     /// A cone of ~6e-300 sr, whose light density's square overflows: the
