@@ -22,9 +22,9 @@
 //! block (branch-free, structure of arrays), and nothing more when `N` is a
 //! power of two (the step is then a permutation of `0..N`). Otherwise the
 //! lanes that fell outside `0..N` (fewer than half, since `2^w < 2N`) are
-//! stepped again by a few whole-block rounds that keep the lanes already
+//! stepped again by a whole-block round that keeps the lanes already
 //! inside (a select, which vectorises), and the few still outside after
-//! them are listed without branches and stepped in rounds, each round
+//! it are listed without branches and stepped in rounds, each round
 //! listing again those still outside, so that no branch depends on a
 //! random walk length; `cell mod nx`
 //! and `cell / nx` use a precomputed reciprocal ([`FastDiv`], Lemire, Kaser
