@@ -48,6 +48,7 @@ mod frame;
 mod parallelogram;
 mod plane;
 mod polygon;
+mod polygon_from_origin;
 mod ray;
 mod solid_angle;
 mod sphere;
@@ -66,6 +67,7 @@ macro_rules! public_api {
         pub use crate::parallelogram::$p::Parallelogram;
         pub use crate::plane::$p::Plane;
         pub use crate::polygon::$p::ConvexPolygon;
+        pub use crate::polygon_from_origin::$p::PolygonFromOrigin;
         pub use crate::ray::$p::{gamma, offset_origin, Hit, Intersect, Ray, SHADOW_EPSILON};
         pub use crate::solid_angle::$p::{
             cap_solid_angle, cap_solid_angle_from_sin2, convex_polygon_solid_angle,

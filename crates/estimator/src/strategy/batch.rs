@@ -18,6 +18,7 @@
 //! 1/Ω), as the estimator always has.
 
 use glam::{DVec2, DVec3};
+use lambert_geometry::f64::PolygonFromOrigin;
 use lambert_light::emitter::Emitter;
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
@@ -110,18 +111,65 @@ impl PreparedEmitter {
                 &block,
                 out,
             ),
-            (EmitterLight::Polygon(poly), Emitter::Polygon(e)) => technique_batch(
-                self,
-                receiver,
-                #[inline(always)]
-                |w| e.radiance_toward(p, w),
-                #[inline(always)]
-                |u| sample_polygon(poly, u),
-                #[inline(always)]
-                |w| poly.pdf(w),
-                &block,
-                out,
-            ),
+            (EmitterLight::Polygon(poly), Emitter::Polygon(e)) => {
+                let light = hoisted(
+                    #[inline(always)]
+                    |u| sample_polygon(poly, u),
+                );
+                let pdf = hoisted(
+                    #[inline(always)]
+                    |w| poly.pdf(w),
+                );
+                // `PolygonLight::radiance_toward` with the ray test prepared
+                // for the receiver's point: the same answer to the bit, and
+                // for 3 or 4 vertices a loop that vectorises (the general
+                // test is a call per sample into a loop over the vertices).
+                let (radiance, two_sided, facing) = (e.radiance, e.two_sided, e.polygon.normal());
+                let lit = hoisted(
+                    #[inline(always)]
+                    move |(w, hits): (DVec3, bool)| {
+                        if (two_sided | (w.dot(facing) < 0.0)) & hits {
+                            radiance
+                        } else {
+                            0.0
+                        }
+                    },
+                );
+                if let Some(seen) = PolygonFromOrigin::<3>::new(&e.polygon, p) {
+                    return technique_batch(
+                        self,
+                        receiver,
+                        #[inline(always)]
+                        |w| lit((w, seen.hits(w))),
+                        light,
+                        pdf,
+                        &block,
+                        out,
+                    );
+                }
+                if let Some(seen) = PolygonFromOrigin::<4>::new(&e.polygon, p) {
+                    return technique_batch(
+                        self,
+                        receiver,
+                        #[inline(always)]
+                        |w| lit((w, seen.hits(w))),
+                        light,
+                        pdf,
+                        &block,
+                        out,
+                    );
+                }
+                technique_batch(
+                    self,
+                    receiver,
+                    #[inline(always)]
+                    |w| e.radiance_toward(p, w),
+                    light,
+                    pdf,
+                    &block,
+                    out,
+                )
+            }
             (EmitterLight::Disk(d), Emitter::Disk(e)) => technique_batch(
                 self,
                 receiver,
