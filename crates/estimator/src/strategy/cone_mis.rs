@@ -112,10 +112,18 @@ macro_rules! cone_mis {
                     (0.0, 0.0)
                 };
                 let (n_cos, d_cos) = quotient(l_cos, p_cos, p_light);
-                // D = 0 only outside the cone (inside, D ≥ b² > 0), where
-                // N = 0 too: 1 stands in, so that the value is 0, not NaN,
-                // and cannot spoil a division the halves share.
-                let d_cos = if d_cos > 0.0 { d_cos } else { 1.0 };
+                // Inside the cone D ≥ b² ≥ 1/16. Outside, N = 0 and D = a²
+                // may be 0 or subnormal (a tiny cone's scale makes a tiny):
+                // below √(smallest normal), 1 stands in, so that the value
+                // is 0, not NaN, and the reciprocal the f64 halves share,
+                // 1/(D₁D₂), stays finite (a subnormal D₁ overflowed it).
+                // A scene of normal range never has so small a D, so the
+                // values stay those of the per-sample scaling.
+                let d_cos = if d_cos >= $real::MIN_POSITIVE.sqrt() {
+                    d_cos
+                } else {
+                    1.0
+                };
                 let cos = self.normal.dot(self.cone.sample(v)).max(0.0);
                 let (n_light, d_light) = quotient(
                     self.radiance * cos,
@@ -279,6 +287,28 @@ mod tests {
     /// cosine half finite.
     #[test]
     fn a_tiny_cone_stays_finite() {
+        // Cosine samples outside cones this narrow have scaled densities
+        // whose squares are subnormal (1e-157) or 0 (1e-300): both halves
+        // stay finite on a grid of samples (the first was a fuzz case, a
+        // sphere 1.6e306 away of radius 4e227, that gave NaN).
+        for one_minus_cos in [1e-300, 3.6e-158, 1e-157, 1e-100] {
+            let frame = Frame::from_normal(DVec3::Z);
+            let receiver = Frame::from_normal(DVec3::new(-0.03, -0.99, 0.07).normalize());
+            let cone = UniformCone::from_one_minus_cos(one_minus_cos).unwrap();
+            let m = ConeMis::new(0.008, &frame, &cone, &receiver);
+            for i in 0..64 {
+                for j in 0..64 {
+                    let u = DVec2::new((f64::from(i) + 0.5) / 64.0, (f64::from(j) + 0.5) / 64.0);
+                    for h in [Heuristic::Balance, Heuristic::Power] {
+                        let (c, l) = m.parts(h, u, DVec2::new(u.y, u.x));
+                        assert!(
+                            c.is_finite() && l.is_finite(),
+                            "{one_minus_cos} {h:?} {u}: {c} {l}"
+                        );
+                    }
+                }
+            }
+        }
         let frame = Frame::from_normal(DVec3::Z);
         let cone = UniformCone::from_one_minus_cos(1e-300).unwrap();
         let m = ConeMis::new(1.0, &frame, &cone, &frame);
