@@ -19,7 +19,7 @@
 
 use glam::{DVec2, DVec3};
 use lambert_geometry::f64::PolygonFromOrigin;
-use lambert_light::emitter::Emitter;
+use lambert_light::emitter::{Emitter, PolygonLight};
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
@@ -120,44 +120,11 @@ impl PreparedEmitter {
                     #[inline(always)]
                     |w| poly.pdf(w),
                 );
-                // `PolygonLight::radiance_toward` with the ray test prepared
-                // for the receiver's point: the same answer to the bit, and
-                // for 3 or 4 vertices a loop that vectorises (the general
-                // test is a call per sample into a loop over the vertices).
-                let (radiance, two_sided, facing) = (e.radiance, e.two_sided, e.polygon.normal());
-                let lit = hoisted(
-                    #[inline(always)]
-                    move |(w, hits): (DVec3, bool)| {
-                        if (two_sided | (w.dot(facing) < 0.0)) & hits {
-                            radiance
-                        } else {
-                            0.0
-                        }
-                    },
-                );
-                if let Some(seen) = PolygonFromOrigin::<3>::new(&e.polygon, p) {
-                    return technique_batch(
-                        self,
-                        receiver,
-                        #[inline(always)]
-                        |w| lit((w, seen.hits(w))),
-                        light,
-                        pdf,
-                        &block,
-                        out,
-                    );
+                if let Some(hits) = polygon_batch::<3>(self, receiver, e, light, pdf, &block, out) {
+                    return hits;
                 }
-                if let Some(seen) = PolygonFromOrigin::<4>::new(&e.polygon, p) {
-                    return technique_batch(
-                        self,
-                        receiver,
-                        #[inline(always)]
-                        |w| lit((w, seen.hits(w))),
-                        light,
-                        pdf,
-                        &block,
-                        out,
-                    );
+                if let Some(hits) = polygon_batch::<4>(self, receiver, e, light, pdf, &block, out) {
+                    return hits;
                 }
                 technique_batch(
                     self,
@@ -285,6 +252,49 @@ fn cone_mis_batch(cone: &ConeMis, h: Heuristic, block: &Block<'_>, out: &mut [f6
 #[inline(always)]
 fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
     f
+}
+
+/// [`technique_batch`] for a polygon light of exactly `N` vertices, with
+/// `PolygonLight::radiance_toward`'s ray test prepared once for the
+/// receiver's point ([`PolygonFromOrigin`]): the same answer to the bit, in
+/// a fixed, branch-free edge loop that vectorises (the general test is a
+/// call per sample into a loop over the vertices). `None` when the polygon
+/// does not have `N` vertices.
+#[inline(always)]
+fn polygon_batch<const N: usize>(
+    emitter: &PreparedEmitter,
+    receiver: &Receiver,
+    polygon: &PolygonLight,
+    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
+    light_pdf: impl Fn(DVec3) -> f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> Option<PartHits> {
+    let seen = PolygonFromOrigin::<N>::new(&polygon.polygon, receiver.point)?;
+    let (radiance, two_sided, facing) = (
+        polygon.radiance,
+        polygon.two_sided,
+        polygon.polygon.normal(),
+    );
+    let lit = hoisted(
+        #[inline(always)]
+        move |w: DVec3| {
+            if (two_sided | (w.dot(facing) < 0.0)) & seen.hits(w) {
+                radiance
+            } else {
+                0.0
+            }
+        },
+    );
+    Some(technique_batch(
+        emitter,
+        receiver,
+        lit,
+        light_sample,
+        light_pdf,
+        block,
+        out,
+    ))
 }
 
 /// `out[i] += f(i)` over the block, counting the non-zero values.
