@@ -25,8 +25,22 @@ macro_rules! discrete_impl {
                 .partition_point(|&c| c <= target)
                 .min(cumulative.len() - 1);
             let lo = if k == 0 { 0.0 } else { cumulative[k - 1] };
-            let rescaled = ((target - lo) / (cumulative[k] - lo)).clamp(0.0, ONE_MINUS_EPSILON);
-            Some((k, rescaled))
+            Some((k, rescale_within(target, lo, cumulative[k])))
+        }
+
+        /// Where `target` lies in the interval [lo, hi) of a cumulative
+        /// table, as a number in [0, 1): (target − lo)/(hi − lo), clamped
+        /// below 1. The second use of a reused uniform number
+        /// ([`pick_by_cumulative`] returns it with the chosen index).
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::rescale_within;")]
+        /// assert_eq!(rescale_within(1.5, 1.0, 3.0), 0.25);
+        /// assert!(rescale_within(3.0, 1.0, 3.0) < 1.0);
+        /// ```
+        #[inline(always)]
+        pub fn rescale_within(target: Real, lo: Real, hi: Real) -> Real {
+            ((target - lo) / (hi - lo)).clamp(0.0, ONE_MINUS_EPSILON)
         }
     };
 }

@@ -68,7 +68,7 @@ macro_rules! public_api {
         };
         pub use crate::cone::$p::UniformCone;
         pub use crate::direction_sample::$p::DirectionSample;
-        pub use crate::discrete::$p::pick_by_cumulative;
+        pub use crate::discrete::$p::{pick_by_cumulative, rescale_within};
         pub use crate::disk::$p::{
             concentric_polar, invert_concentric_disk, invert_uniform_disk, pdf_concentric_disk,
             pdf_uniform_disk, sample_concentric_disk, sample_uniform_disk,
@@ -83,7 +83,9 @@ macro_rules! public_api {
         };
         pub use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
         pub use crate::light_sampler::$p::{seen_from, LightSampler};
-        pub use crate::polygon_light::$p::{PolygonLightSampler, PolygonSolidAngle};
+        pub use crate::polygon_light::$p::{
+            PolygonLightSampler, PolygonSolidAngle, SingleTriangle,
+        };
         pub use crate::projected_cap::$p::ProjectedCap;
         pub use crate::projected_polygon::$p::{ProjectedPolygon, ProjectedPolygonSampler};
         pub use crate::projected_sphere::$p::{ProjectedSphere, ProjectedSphereSampler};
@@ -98,7 +100,7 @@ macro_rules! public_api {
         pub use crate::spherical_triangle::$p::SphericalTriangle;
         pub use crate::triangle::$p::UniformTriangle;
         pub use crate::triangle_light::$p::{TriangleLightSampler, TriangleSolidAngle};
-        pub use crate::trig::$p::{sin_cos_2pi, sin_cos_quarter};
+        pub use crate::trig::$p::{sin, sin_cos, sin_cos_2pi, sin_cos_quarter};
     };
 }
 

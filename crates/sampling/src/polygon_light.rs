@@ -2,7 +2,8 @@
 
 macro_rules! polygon_light_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
-        use crate::discrete::$p::pick_by_cumulative;
+        use crate::direction_sample::$p::DirectionSample;
+        use crate::discrete::$p::{pick_by_cumulative, rescale_within};
         use crate::error::SamplingError;
         use crate::horizon_clip::$p::{horizon, Clipped, Horizon};
         use crate::horizon_clip::MAX_POLYGON_VERTICES;
@@ -11,7 +12,7 @@ macro_rules! polygon_light_impl {
         use crate::spherical_rectangle::$p::SphericalRectangle;
         use crate::spherical_triangle::$p::SphericalTriangle;
         use crate::triangle_light::$p::distance_to_plane;
-        use lambert_geometry::precision::$p::{Real, ONE_MINUS_EPSILON, V2, V3};
+        use lambert_geometry::precision::$p::{Real, V2, V3};
         use lambert_geometry::$p::ConvexPolygon;
 
         /// A convex polygon seen from one reference point, sampled
@@ -95,6 +96,26 @@ macro_rules! polygon_light_impl {
                 }
             }
 
+            /// The fan's one spherical triangle, when the polygon is seen
+            /// as a single triangle (a triangle wholly above the horizon):
+            /// it samples as [`sample`](Self::sample) and
+            /// [`pdf`](Self::pdf) do, to the bit, without the table lookup,
+            /// so a batch of samples runs as one vectorised loop.
+            #[inline]
+            pub fn single_triangle(&self) -> Option<SingleTriangle> {
+                match self {
+                    PolygonSolidAngle::Fan {
+                        triangles,
+                        cumulative,
+                        ..
+                    } if triangles.len() == 1 => Some(SingleTriangle {
+                        triangle: triangles[0],
+                        solid_angle: cumulative[0],
+                    }),
+                    _ => None,
+                }
+            }
+
             /// 1/Ω for unit directions inside the subtended solid angle,
             /// else 0.
             #[inline]
@@ -112,6 +133,43 @@ macro_rules! polygon_light_impl {
                             0.0
                         }
                     }
+                }
+            }
+        }
+
+        /// A [`PolygonSolidAngle`] that is one spherical triangle
+        /// ([`PolygonSolidAngle::single_triangle`]).
+        ///
+        /// It holds a copy of the triangle, not a reference: a batch loop
+        /// then keeps the triangle's values in registers (through a
+        /// reference, the compiler reloaded them and did not vectorise).
+        #[derive(Clone, Copy, Debug)]
+        pub struct SingleTriangle {
+            triangle: SphericalTriangle,
+            solid_angle: Real,
+        }
+
+        impl SingleTriangle {
+            /// [`PolygonSolidAngle::sample`]'s direction and density (1/Ω
+            /// per steradian): the one-entry table's pick, u₀ = u·Ω/Ω
+            /// rescaled as [`pick_by_cumulative`] does, then the triangle's
+            /// warp.
+            #[inline(always)]
+            pub fn sample(&self, u: V2) -> DirectionSample {
+                let u0 = rescale_within(u.x * self.solid_angle, 0.0, self.solid_angle);
+                DirectionSample {
+                    direction: self.triangle.sample(V2::new(u0, u.y)).direction,
+                    pdf: 1.0 / self.solid_angle,
+                }
+            }
+
+            /// [`PolygonSolidAngle::pdf`]: 1/Ω inside the triangle, else 0.
+            #[inline(always)]
+            pub fn pdf(&self, w: V3) -> Real {
+                if self.triangle.contains(w) {
+                    1.0 / self.solid_angle
+                } else {
+                    0.0
                 }
             }
         }
@@ -264,7 +322,7 @@ macro_rules! polygon_light_impl {
                 lo = hi;
             }
             let (t, lo, hi) = chosen?;
-            let u0 = ((target - lo) / (hi - lo)).clamp(0.0, ONE_MINUS_EPSILON);
+            let u0 = rescale_within(target, lo, hi);
             let d = t.sample(V2::new(u0, u.y));
             let distance = distance_to_plane(reference, d.direction, on_plane, plane_normal);
             Some(LightSample {
@@ -354,6 +412,47 @@ mod tests {
 
     fn grid() -> impl Iterator<Item = DVec2> {
         (0..=12).flat_map(|i| (0..=12).map(move |j| DVec2::new(i as f64, j as f64) / 12.0))
+    }
+
+    /// A triangle above the horizon is a one-triangle fan, and its
+    /// `single_triangle` view samples and evaluates the density exactly as
+    /// the fan does (bits compared, on a grid with its edges and on
+    /// directions inside and outside); a straddling hexagon (a fan of
+    /// several) and a rectangle have no such view.
+    #[test]
+    fn a_single_triangle_samples_as_its_fan_does() {
+        let (p, n) = (DVec3::ZERO, DVec3::Z);
+        let triangle = ConvexPolygon::new(vec![
+            DVec3::new(-1.0, -1.0, 2.0),
+            DVec3::new(0.0, 1.5, 2.5),
+            DVec3::new(2.0, -0.5, 2.2),
+        ])
+        .unwrap();
+        let fan = PolygonLightSampler::new(triangle).unwrap().at(p, n);
+        let single = fan.single_triangle().expect("one triangle");
+        for u in grid() {
+            let (a, b) = (fan.sample(u).unwrap(), single.sample(u));
+            assert_eq!(
+                a.direction.to_array().map(f64::to_bits),
+                b.direction.to_array().map(f64::to_bits)
+            );
+            assert_eq!(a.pdf.to_bits(), b.pdf.to_bits());
+            for w in [a.direction, -a.direction, DVec3::X] {
+                assert_eq!(fan.pdf(w).to_bits(), single.pdf(w).to_bits());
+            }
+        }
+        let hexagon = PolygonLightSampler::new(ConvexPolygon::new(hexagon()).unwrap()).unwrap();
+        assert!(hexagon.at(p, n).single_triangle().is_none());
+        let rectangle = ConvexPolygon::new(vec![
+            DVec3::new(-1.0, -1.0, 1.0),
+            DVec3::new(1.0, -1.0, 1.0),
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(-1.0, 1.0, 1.0),
+        ])
+        .unwrap();
+        let rectangle = PolygonLightSampler::new(rectangle).unwrap().at(p, n);
+        assert!(matches!(rectangle, PolygonSolidAngle::Rectangle(_)));
+        assert!(rectangle.single_triangle().is_none());
     }
 
     /// Every sample of a straddling polygon lies above the horizon (to

@@ -11,6 +11,7 @@ macro_rules! spherical_rectangle_impl {
         use crate::light_sample::$p::LightSample;
         use lambert_geometry::precision::$p::{wide3, Real, PI, V2, V3};
         use lambert_geometry::$p::solid_angle_van_oosterom;
+        use crate::trig::$p::sin;
 
         /// The pieces of [a, a + w] on either side of 0, each reflected to
         /// non-negative coordinates, as (start, width); an absent piece has
@@ -75,9 +76,24 @@ macro_rules! spherical_rectangle_impl {
             total
         }
 
+        /// `v.clamp(lo, hi)` for lo ≤ hi (the rectangle's bounds, ordered
+        /// by construction), NaN passed through as `clamp` does, without
+        /// `clamp`'s check of the bounds: that check is a possible panic
+        /// inside the sampling loop, which keeps the compiler from
+        /// vectorising the estimator's batch kernels.
+        #[inline(always)]
+        fn clamp_ordered(v: Real, lo: Real, hi: Real) -> Real {
+            let v = if v < lo { lo } else { v };
+            if v > hi {
+                hi
+            } else {
+                v
+            }
+        }
+
         /// yb/√(δ² + yb²) − ya/√(δ² + ya²) for ya ≤ yb, without
         /// cancellation (`h` = yb − ya, exact from the caller).
-        #[inline]
+        #[inline(always)]
         fn h_diff(ya: Real, yb: Real, h: Real, dd2: Real) -> Real {
             let (ra, rb) = ((dd2 + ya * ya).sqrt(), (dd2 + yb * yb).sqrt());
             if (ya >= 0.0) == (yb >= 0.0) && ya != 0.0 {
@@ -278,31 +294,27 @@ macro_rules! spherical_rectangle_impl {
                 [self.x0, self.x0 + self.w, self.y0, self.y0 + self.h, self.d]
             }
 
-            /// The local (x, y) on the rectangle that u maps to.
-            #[inline]
+            /// The local (x, y) on the rectangle that u maps to. The sines
+            /// are [`sin`](crate::f64::sin)'s (inlined, so the estimator's
+            /// block kernels vectorise this sampler), not libm's.
+            #[inline(always)]
             fn sample_local(&self, u: V2) -> (Real, Real) {
                 let (x0, x1) = (self.x0, self.x0 + self.w);
                 let t = self.t_right + (1.0 - u.x) * self.solid_angle;
                 let tp = self.t_left + u.x * self.solid_angle;
                 let psibar = self.phibar1 + self.phitilde0;
-                let sin_half = |a: Real, other: Real| {
-                    if a <= PI {
-                        (0.5 * a).sin()
-                    } else {
-                        (psibar + 0.5 * other).sin()
-                    }
-                };
+                // The argument is chosen, then one sine (not a sine on each
+                // side of a branch: the batch kernels select, so both sides
+                // would run).
+                let sin_half =
+                    |a: Real, other: Real| sin(if a <= PI { 0.5 * a } else { psibar + 0.5 * other });
                 let (s, sp) = (sin_half(t, tp), sin_half(tp, t));
-                let c1 = (self.phibar1 + 0.5 * t)
-                    .min(self.phitilde0 + 0.5 * tp)
-                    .sin();
-                let c2 = (self.phibar1 + 0.5 * tp)
-                    .min(self.phitilde0 + 0.5 * t)
-                    .sin();
+                let c1 = sin((self.phibar1 + 0.5 * t).min(self.phitilde0 + 0.5 * tp));
+                let c2 = sin((self.phibar1 + 0.5 * tp).min(self.phitilde0 + 0.5 * t));
                 let root = (s * sp).sqrt() * (c1 * c2).sqrt();
-                let sin_beta = (0.5 * (tp - t)).sin();
+                let sin_beta = sin(0.5 * (tp - t));
                 let xu = if root > 0.0 {
-                    (self.d * sin_beta / (2.0 * root)).clamp(x0, x1)
+                    clamp_ordered(self.d * sin_beta / (2.0 * root), x0, x1)
                 } else if u.x < 0.5 {
                     x0
                 } else {
@@ -331,7 +343,7 @@ macro_rules! spherical_rectangle_impl {
                 };
                 let den = ((one_minus_h1 + (1.0 - u.y) * dh) * (one_plus_h0 + u.y * dh)).sqrt();
                 let yv = if den > 0.0 {
-                    (hv * dd2.sqrt() / den).clamp(y0, y1)
+                    clamp_ordered(hv * dd2.sqrt() / den, y0, y1)
                 } else if u.y < 0.5 {
                     y0
                 } else {
@@ -357,7 +369,7 @@ macro_rules! spherical_rectangle_impl {
             /// As [`SphericalRectangle::sample`], also returning the point on
             /// the rectangle (`corner + (x − x₀) ê₀ + (y − y₀) ê₁`, in the
             /// rectangle's plane to rounding) and its distance from `p`.
-            #[inline]
+            #[inline(always)]
             pub fn sample_point(&self, u: V2) -> LightSample {
                 let (x, y) = self.sample_local(u);
                 let offset = self.ex * x + self.ey * y - self.ez * self.d;

@@ -10,6 +10,7 @@ macro_rules! spherical_triangle_impl {
         use crate::error::SamplingError;
         use lambert_geometry::precision::$p::{wide3, Real, V2, V3};
         use lambert_geometry::$p::solid_angle_van_oosterom;
+        use crate::trig::$p::{sin, sin_cos};
 
         /// The uniform density over the directions that a triangle
         /// subtends at a point: p(ω) = 1/Ω per steradian inside the
@@ -211,16 +212,20 @@ macro_rules! spherical_triangle_impl {
             /// docs). Every u ∈ [0, 1]², including exact 0 and 1, gives a
             /// finite unit vector for which [`SphericalTriangle::pdf`] returns
             /// the same density.
-            #[inline]
+            ///
+            /// The sines are [`sin_cos`](crate::f64::sin_cos)'s (inlined, so
+            /// the estimator's block kernels vectorise this sampler), not
+            /// libm's.
+            #[inline(always)]
             pub fn sample(&self, u: V2) -> DirectionSample {
                 let half_area = 0.5 * (u.x * self.solid_angle);
-                let (s, ch) = half_area.sin_cos();
+                let (s, ch) = sin_cos(half_area);
                 // sin(α − Â/2) ≥ 0 (Ω < 2α); two non-negative terms when
                 // α > π/2, a direct sine of an angle in (0, π/2] otherwise.
                 let q = if self.cos_alpha < 0.0 {
                     self.sin_alpha * ch - self.cos_alpha * s
                 } else {
-                    (self.alpha - half_area).sin()
+                    sin(self.alpha - half_area)
                 }
                 .max(0.0);
                 let x = self.sin_c * q;

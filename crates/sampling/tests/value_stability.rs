@@ -254,6 +254,13 @@ macro_rules! hashes {
 }
 
 /// The hashes of this commit's warps (see the module docs).
+///
+/// Changed on purpose: the spherical triangle and rectangle warps (and the
+/// triangle and polygon light samplers built on them) take their sines from
+/// `sin_cos` (a Cody–Waite reduction and the warps' own polynomials) rather
+/// than libm, so that the estimator's batch kernels inline and vectorise
+/// them; the outputs moved by an ulp or so, and no longer depend on the
+/// platform's libm.
 const EXPECTED: &[(&str, u64)] = &[
     ("f32/concentric_disk", 0x7ec1a6053e1c3f65),
     ("f32/cosine_hemisphere", 0xefc9f48ee2f30b30),
@@ -263,7 +270,7 @@ const EXPECTED: &[(&str, u64)] = &[
     ("f32/disk_solid_angle", 0x2e1aa6f557314583),
     ("f32/parallelogram_area", 0xd1417b47dc5947d0),
     ("f32/polygon_area_light", 0xd3be571cbd23d44c),
-    ("f32/polygon_light", 0xe9d9d72d4d5871f1),
+    ("f32/polygon_light", 0x14c93da074557b43),
     ("f32/projected_cap(above)", 0x30f6333e06384bd5),
     ("f32/projected_cap(straddling above)", 0x47758cedf2e120be),
     ("f32/projected_cap(straddling below)", 0xf382eb24ce3aa053),
@@ -276,11 +283,11 @@ const EXPECTED: &[(&str, u64)] = &[
     ("f32/sphere_area", 0x6b7293e577c36fca),
     ("f32/sphere_light", 0x1484d807b6224230),
     ("f32/sphere_solid_angle", 0x04f1663058e6e67c),
-    ("f32/spherical_rectangle", 0xae59a00315455f05),
-    ("f32/spherical_triangle", 0x1175d88ee5031ccc),
+    ("f32/spherical_rectangle", 0xc348fb630da3807b),
+    ("f32/spherical_triangle", 0xb8164c8314b5e8f7),
     ("f32/triangle_area", 0xd690981ef772c0fe),
     ("f32/triangle_area_light", 0xeab2e3e3d7a0cfef),
-    ("f32/triangle_light", 0x4a9955be22d4e414),
+    ("f32/triangle_light", 0x00e438952e6c1c84),
     ("f32/uniform_cone(0.00001)", 0x1743da2db5f888d1),
     ("f32/uniform_cone(0.3)", 0xff7a3a8768805694),
     ("f32/uniform_cone(2.5)", 0xf4bfe47c6aae1f59),
@@ -295,7 +302,7 @@ const EXPECTED: &[(&str, u64)] = &[
     ("f64/disk_solid_angle", 0xd95e2f3c60193ff3),
     ("f64/parallelogram_area", 0x12c9cfd2eec84658),
     ("f64/polygon_area_light", 0x060b0c4dce5847eb),
-    ("f64/polygon_light", 0x3f1b494a85269a88),
+    ("f64/polygon_light", 0x748d46b113ee480f),
     ("f64/projected_cap(above)", 0x48965b410e9bcdbe),
     ("f64/projected_cap(straddling above)", 0x811e3c6b6d322cd5),
     ("f64/projected_cap(straddling below)", 0x16be81276a946fcb),
@@ -308,11 +315,11 @@ const EXPECTED: &[(&str, u64)] = &[
     ("f64/sphere_area", 0x89c5846079f59c9a),
     ("f64/sphere_light", 0x877dc3da59aa59a1),
     ("f64/sphere_solid_angle", 0x5e8e0cd8ede21cfc),
-    ("f64/spherical_rectangle", 0x5f79c59abcb33578),
-    ("f64/spherical_triangle", 0x4a7b8eb66512659b),
+    ("f64/spherical_rectangle", 0xe7863cdd054d175d),
+    ("f64/spherical_triangle", 0x0cc8887ae16eefdc),
     ("f64/triangle_area", 0xa0b5c186e6c500d0),
     ("f64/triangle_area_light", 0xf85f772c07755598),
-    ("f64/triangle_light", 0x630e27fa71df1812),
+    ("f64/triangle_light", 0xe44413ded7977dc4),
     ("f64/uniform_cone(0.00001)", 0x4afd16783e340c48),
     ("f64/uniform_cone(0.3)", 0xee011e1b51f29771),
     ("f64/uniform_cone(2.5)", 0x3f13a2af371233c3),
