@@ -23,12 +23,13 @@ use lambert_light::emitter::{Emitter, PolygonLight};
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
-    sample_uniform_hemisphere, LightSampler, SphereSolidAngle,
+    sample_uniform_hemisphere, LightSampler, PolygonSolidAngle, SphereSolidAngle,
 };
 
 use super::cone_mis::ConeMis;
 use super::emitter_light::{
-    sample_cap, sample_disk, sample_disk_table, sample_polygon, sample_sky, sample_sphere,
+    sample_cap, sample_disk, sample_disk_table, sample_polygon, sample_rectangle,
+    sample_single_triangle, sample_sky, sample_sphere,
 };
 use super::{
     EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
@@ -112,6 +113,51 @@ impl PreparedEmitter {
                 out,
             ),
             (EmitterLight::Polygon(poly), Emitter::Polygon(e)) => {
+                // Light sampling and MIS with the light sampler specialised
+                // to what the polygon looks like from here, inline in the
+                // loop (so it vectorises): one spherical triangle of a
+                // triangle light, or the spherical rectangle of a
+                // rectangle, each with its own vertex count's lookup. Only
+                // those two techniques are compiled for them (each pairing
+                // is one more copy of the loops per instruction set). The
+                // rest, and other polygons, take `PolygonSolidAngle::sample`,
+                // which looks the fan's triangle up per sample.
+                if let (Some(single), Some(lit)) =
+                    (poly.single_triangle(), polygon_lookup::<3>(e, p))
+                {
+                    let single = &{ single };
+                    if let Some(hits) = sampled_batch(
+                        self,
+                        receiver,
+                        lit,
+                        #[inline(always)]
+                        |u| sample_single_triangle(single, u),
+                        #[inline(always)]
+                        |w| single.pdf(w),
+                        &block,
+                        out,
+                    ) {
+                        return hits;
+                    }
+                }
+                if let (PolygonSolidAngle::Rectangle(r), Some(lit)) =
+                    (poly, polygon_lookup::<4>(e, p))
+                {
+                    let r = &{ *r };
+                    if let Some(hits) = sampled_batch(
+                        self,
+                        receiver,
+                        lit,
+                        #[inline(always)]
+                        |u| sample_rectangle(r, u),
+                        #[inline(always)]
+                        |w| r.pdf(w),
+                        &block,
+                        out,
+                    ) {
+                        return hits;
+                    }
+                }
                 let light = hoisted(
                     #[inline(always)]
                     |u| sample_polygon(poly, u),
@@ -120,11 +166,11 @@ impl PreparedEmitter {
                     #[inline(always)]
                     |w| poly.pdf(w),
                 );
-                if let Some(hits) = polygon_batch::<3>(self, receiver, e, light, pdf, &block, out) {
-                    return hits;
+                if let Some(lit) = polygon_lookup::<3>(e, p) {
+                    return technique_batch(self, receiver, lit, light, pdf, &block, out);
                 }
-                if let Some(hits) = polygon_batch::<4>(self, receiver, e, light, pdf, &block, out) {
-                    return hits;
+                if let Some(lit) = polygon_lookup::<4>(e, p) {
+                    return technique_batch(self, receiver, lit, light, pdf, &block, out);
                 }
                 technique_batch(
                     self,
@@ -254,29 +300,24 @@ fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
     f
 }
 
-/// [`technique_batch`] for a polygon light of exactly `N` vertices, with
-/// `PolygonLight::radiance_toward`'s ray test prepared once for the
-/// receiver's point ([`PolygonFromOrigin`]): the same answer to the bit, in
-/// a fixed, branch-free edge loop that vectorises (the general test is a
-/// call per sample into a loop over the vertices). `None` when the polygon
-/// does not have `N` vertices.
+/// `PolygonLight::radiance_toward` from the point `origin`, for a polygon
+/// of exactly `N` vertices, with the ray test prepared once for that point
+/// ([`PolygonFromOrigin`]): the same answer to the bit, in a fixed,
+/// branch-free edge loop that vectorises (the general test is a call per
+/// sample into a loop over the vertices). `None` when the polygon does not
+/// have `N` vertices.
 #[inline(always)]
-fn polygon_batch<const N: usize>(
-    emitter: &PreparedEmitter,
-    receiver: &Receiver,
+fn polygon_lookup<const N: usize>(
     polygon: &PolygonLight,
-    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
-    light_pdf: impl Fn(DVec3) -> f64,
-    block: &Block<'_>,
-    out: &mut [f64],
-) -> Option<PartHits> {
-    let seen = PolygonFromOrigin::<N>::new(&polygon.polygon, receiver.point)?;
+    origin: DVec3,
+) -> Option<impl Fn(DVec3) -> f64> {
+    let seen = PolygonFromOrigin::<N>::new(&polygon.polygon, origin)?;
     let (radiance, two_sided, facing) = (
         polygon.radiance,
         polygon.two_sided,
         polygon.polygon.normal(),
     );
-    let lit = hoisted(
+    Some(hoisted(
         #[inline(always)]
         move |w: DVec3| {
             if (two_sided | (w.dot(facing) < 0.0)) & seen.hits(w) {
@@ -285,16 +326,101 @@ fn polygon_batch<const N: usize>(
                 0.0
             }
         },
-    );
-    Some(technique_batch(
-        emitter,
-        receiver,
-        lit,
-        light_sample,
-        light_pdf,
-        block,
-        out,
     ))
+}
+
+/// [`technique_batch`]'s light-sampling techniques only (light, MIS):
+/// their loops for a light sampler specialised to one shape, without
+/// compiling every other technique's loop again for it. `None` for the
+/// other techniques.
+#[inline(always)]
+fn sampled_batch(
+    emitter: &PreparedEmitter,
+    receiver: &Receiver,
+    radiance: impl Fn(DVec3) -> f64,
+    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
+    light_pdf: impl Fn(DVec3) -> f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> Option<PartHits> {
+    let radiance_cos = radiance_cos_of(receiver.normal, radiance);
+    match emitter.technique {
+        Technique::Light => Some(light_batch(
+            emitter.light_radiance,
+            receiver.normal,
+            radiance_cos,
+            light_sample,
+            block,
+            out,
+        )),
+        Technique::Mis(h) => Some(mis_batch(
+            h,
+            receiver,
+            emitter.light_radiance,
+            radiance_cos,
+            light_sample,
+            light_pdf,
+            block,
+            out,
+        )),
+        _ => None,
+    }
+}
+
+/// L(ω) max(cos θ, 0) from the radiance lookup `radiance`, for the unit
+/// normal `normal`. The lookup runs for every lane and the result is
+/// selected (the same value): under the branch, the emitter's data were
+/// reloaded by masked gathers on every iteration.
+#[inline(always)]
+fn radiance_cos_of(normal: DVec3, radiance: impl Fn(DVec3) -> f64) -> impl Fn(DVec3) -> f64 {
+    hoisted(
+        #[inline(always)]
+        move |w: DVec3| {
+            let cos = w.dot(normal);
+            let l = radiance(w);
+            if cos > 0.0 {
+                l * cos
+            } else {
+                0.0
+            }
+        },
+    )
+}
+
+/// Light sampling: L cos θ / p of every direction the light sampler draws,
+/// with L known for every drawn direction (`light_radiance`) or looked up.
+#[inline(always)]
+fn light_batch(
+    light_radiance: Option<f64>,
+    normal: DVec3,
+    radiance_cos: impl Fn(DVec3) -> f64,
+    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    let known_radiance = light_radiance.is_some();
+    let uniform = light_radiance.unwrap_or(0.0);
+    single(
+        out,
+        #[inline(always)]
+        |i| {
+            // Branch-free, as in `mis_batch`.
+            let (s, drawn) = match light_sample(block.u(i)) {
+                Some(s) => (s, true),
+                None => (NO_LIGHT_DIRECTION, false),
+            };
+            let v = if known_radiance {
+                uniform * s.direction.dot(normal).max(0.0) / s.pdf
+            } else {
+                radiance_cos(s.direction) / s.pdf
+            };
+            if drawn {
+                v
+            } else {
+                0.0
+            }
+        },
+    )
 }
 
 /// `out[i] += f(i)` over the block, counting the non-zero values.
@@ -328,21 +454,7 @@ fn technique_batch(
     // branch became masked gathers on every iteration.
     let frame = &{ receiver.frame };
     let normal = receiver.normal;
-    let radiance_cos = hoisted(
-        #[inline(always)]
-        |w: DVec3| {
-            // The lookup runs for every lane and the result is selected
-            // (the same value): under the branch, the emitter's data were
-            // reloaded by masked gathers on every iteration.
-            let cos = w.dot(normal);
-            let l = radiance(w);
-            if cos > 0.0 {
-                l * cos
-            } else {
-                0.0
-            }
-        },
-    );
+    let radiance_cos = radiance_cos_of(normal, &radiance);
     match emitter.technique {
         // Projected sampling and the control variate have no block kernel
         // yet: the one-sample path, sample by sample (the same bits).
@@ -373,31 +485,14 @@ fn technique_batch(
                 }
             },
         ),
-        Technique::Light => {
-            let known_radiance = emitter.light_radiance.is_some();
-            let uniform = emitter.light_radiance.unwrap_or(0.0);
-            single(
-                out,
-                #[inline(always)]
-                |i| {
-                    // Branch-free, as in `mis_batch`.
-                    let (s, drawn) = match light_sample(block.u(i)) {
-                        Some(s) => (s, true),
-                        None => (NO_LIGHT_DIRECTION, false),
-                    };
-                    let v = if known_radiance {
-                        uniform * s.direction.dot(normal).max(0.0) / s.pdf
-                    } else {
-                        radiance_cos(s.direction) / s.pdf
-                    };
-                    if drawn {
-                        v
-                    } else {
-                        0.0
-                    }
-                },
-            )
-        }
+        Technique::Light => light_batch(
+            emitter.light_radiance,
+            normal,
+            &radiance_cos,
+            light_sample,
+            block,
+            out,
+        ),
         Technique::Area => {
             let through = hoisted(
                 #[inline(always)]

@@ -29,7 +29,7 @@ use glam::{Vec2, Vec3};
 use lambert_geometry::f32::{Frame, Intersect, Ray};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
-    sample_uniform_sphere, LightSampler, UniformCone,
+    sample_uniform_sphere, LightSampler, PolygonSolidAngle, UniformCone,
 };
 
 use super::cone_mis::ConeMisF32;
@@ -297,15 +297,45 @@ impl PreparedEmitterF32 {
                 #[inline(always)]
                 |i| 4.0 * PI * normal.dot(sample_uniform_sphere(block.u(i))).max(0.0),
             ),
-            Light::Polygon(p) => single(
-                radiance,
-                out,
-                #[inline(always)]
-                |i| match p.sample(block.u(i)) {
-                    Some(s) => cos_over_pdf(normal, s.direction, s.pdf),
-                    None => 0.0,
-                },
-            ),
+            // One spherical triangle or a spherical rectangle is sampled
+            // inline, as a vectorised loop (the same values as
+            // `PolygonSolidAngle::sample`); a fan of several looks its
+            // triangle up per sample.
+            Light::Polygon(p) => {
+                if let Some(t) = p.single_triangle() {
+                    let t = &{ t };
+                    return single(
+                        radiance,
+                        out,
+                        #[inline(always)]
+                        |i| {
+                            let s = t.sample(block.u(i));
+                            cos_over_pdf(normal, s.direction, s.pdf)
+                        },
+                    );
+                }
+                if let PolygonSolidAngle::Rectangle(r) = p {
+                    let r = &{ *r };
+                    return single(
+                        radiance,
+                        out,
+                        #[inline(always)]
+                        |i| {
+                            let s = r.sample_point(block.u(i));
+                            cos_over_pdf(normal, s.direction, s.pdf)
+                        },
+                    );
+                }
+                single(
+                    radiance,
+                    out,
+                    #[inline(always)]
+                    |i| match p.sample(block.u(i)) {
+                        Some(s) => cos_over_pdf(normal, s.direction, s.pdf),
+                        None => 0.0,
+                    },
+                )
+            }
             Light::Disk(d) => single(
                 radiance,
                 out,
@@ -478,16 +508,51 @@ impl PreparedEmitterF32 {
                 block,
                 out,
             ),
-            Light::Polygon(p) => self.mis_loop(
-                h,
-                sees,
-                #[inline(always)]
-                |w| p.pdf(w),
-                #[inline(always)]
-                |u| p.sample(u).map_or(none, |l| (l.direction, l.pdf)),
-                block,
-                out,
-            ),
+            Light::Polygon(p) => {
+                // As in `light_batch`: one triangle or a rectangle inline.
+                if let Some(t) = p.single_triangle() {
+                    let t = &{ t };
+                    return self.mis_loop(
+                        h,
+                        sees,
+                        #[inline(always)]
+                        |w| t.pdf(w),
+                        #[inline(always)]
+                        |u| {
+                            let s = t.sample(u);
+                            (s.direction, s.pdf)
+                        },
+                        block,
+                        out,
+                    );
+                }
+                if let PolygonSolidAngle::Rectangle(r) = p {
+                    let r = &{ *r };
+                    return self.mis_loop(
+                        h,
+                        sees,
+                        #[inline(always)]
+                        |w| r.pdf(w),
+                        #[inline(always)]
+                        |u| {
+                            let s = r.sample_point(u);
+                            (s.direction, s.pdf)
+                        },
+                        block,
+                        out,
+                    );
+                }
+                self.mis_loop(
+                    h,
+                    sees,
+                    #[inline(always)]
+                    |w| p.pdf(w),
+                    #[inline(always)]
+                    |u| p.sample(u).map_or(none, |l| (l.direction, l.pdf)),
+                    block,
+                    out,
+                )
+            }
             Light::Disk(d) => self.mis_loop(
                 h,
                 sees,

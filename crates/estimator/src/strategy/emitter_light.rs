@@ -7,8 +7,8 @@ use lambert_light::emitter::Emitter;
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_uniform_sphere, sample_uniform_sphere, DiskLightSampler, DiskSolidAngle,
-    PolygonLightSampler, PolygonSolidAngle, SphereLightSampler, SphereSolidAngle,
-    TabulatedDiskSolidAngle, UniformCone,
+    PolygonLightSampler, PolygonSolidAngle, SingleTriangle, SphereLightSampler, SphereSolidAngle,
+    SphericalRectangle, TabulatedDiskSolidAngle, UniformCone,
 };
 
 /// A direction toward a light with its density per steradian.
@@ -175,6 +175,23 @@ pub(super) fn sample_cap(frame: &Frame, cone: &UniformCone, u: DVec2) -> Option<
 pub(super) fn sample_polygon(p: &PolygonSolidAngle, u: DVec2) -> Option<LightDirection> {
     let l = p.sample(u)?;
     checked(l.direction, l.pdf)
+}
+
+/// [`EmitterLight::sample`] of a polygon seen as one spherical triangle:
+/// the same direction and density as [`sample_polygon`], without the
+/// fan's table lookup.
+#[inline(always)]
+pub(super) fn sample_single_triangle(t: &SingleTriangle, u: DVec2) -> Option<LightDirection> {
+    let d = t.sample(u);
+    checked(d.direction, d.pdf)
+}
+
+/// [`EmitterLight::sample`] of a rectangle: its spherical rectangle, as
+/// [`sample_polygon`] samples it (the point on the light is not formed).
+#[inline(always)]
+pub(super) fn sample_rectangle(r: &SphericalRectangle, u: DVec2) -> Option<LightDirection> {
+    let s = r.sample_point(u);
+    checked(s.direction, s.pdf)
 }
 
 /// [`EmitterLight::sample`] of a disk: its spherical ellipse.
