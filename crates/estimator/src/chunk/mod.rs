@@ -10,7 +10,7 @@
 //! - **Blocks.** The chunk is evaluated [`BLOCK`] samples at a time: the
 //!   stream jumps to each emitter's offset for the block
 //!   ([`McgStream::fill_2d`]), the coordinates land in small arrays that stay
-//!   in the first-level cache, and [`PreparedEmitter::add_batch`] adds the
+//!   in the first-level cache, and [`PreparedEmitter::add_batch_in`] adds the
 //!   emitter's estimates to the block's values.
 //! - **No allocation per chunk.** Every buffer is the worker thread's own,
 //!   kept between chunks (`with_scratch`): a chunk of 4096 samples used to
@@ -19,7 +19,9 @@
 //! - **One instruction set for the whole chunk.** The stream, the kernels
 //!   and the summary run inside [`Isa::run`], compiled for the widest vector
 //!   set the processor has; the bits do not depend on which
-//!   ([`lambert_sampling::isa`]).
+//!   ([`lambert_sampling::isa`]). The kernels are one out-of-line copy per
+//!   set ([`PreparedEmitter::add_batch_in`]) that every chunk loop calls
+//!   block by block, not a copy inlined into each loop.
 
 mod mcg;
 mod precision_f32;
@@ -112,7 +114,8 @@ pub fn independent_chunk(
                             let first = first + n as u64;
                             stream.fill_2d(first, &mut s.vx[..m], &mut s.vy[..m]);
                         }
-                        let got = p.add_batch(
+                        let got = p.add_batch_in(
+                            isa,
                             receiver,
                             &s.ux[..m],
                             &s.uy[..m],
@@ -176,7 +179,8 @@ pub fn sequence_chunk<S: SampleSequence>(
                         } else {
                             at(d)
                         };
-                        let got = p.add_batch(
+                        let got = p.add_batch_in(
+                            isa,
                             receiver,
                             &s.px[at(d)],
                             &s.py[at(d)],

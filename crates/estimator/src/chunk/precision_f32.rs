@@ -77,9 +77,12 @@ trait Coordinates {
 /// Evaluates one block of every emitter into `values`, in the emitters'
 /// precisions, with the coordinates `coords(k)` gives emitter k; adds the
 /// part hits to `hits`.
+/// The kernels run through the emitters' `add_batch_in` (one copy per
+/// instruction set, shared by the independent and sequence chunks).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn block<C: Coordinates>(
+    isa: Isa,
     prepared: &[PreparedEmitter],
     f32s: &[Option<PreparedEmitterF32>],
     receiver: &Receiver,
@@ -102,7 +105,7 @@ fn block<C: Coordinates>(
                 } else {
                     [&vx[..m], &vy[..m]]
                 };
-                q.add_batch(ux, uy, vx, vy, values)
+                q.add_batch_in(isa, ux, uy, vx, vy, values)
             }
             None => {
                 let [ux, uy, vx, vy] = &mut s.u64s;
@@ -112,7 +115,7 @@ fn block<C: Coordinates>(
                 } else {
                     [&vx[..m], &vy[..m]]
                 };
-                p.add_batch(receiver, ux, uy, vx, vy, values)
+                p.add_batch_in(isa, receiver, ux, uy, vx, vy, values)
             }
         };
         h[0] += got[0];
@@ -180,7 +183,9 @@ pub fn independent_chunk_f32(
                         first: offsets[k] + start as u64,
                         n: n as u64,
                     };
-                    block(prepared, f32s, receiver, s, start, m, coords, &mut hits);
+                    block(
+                        isa, prepared, f32s, receiver, s, start, m, coords, &mut hits,
+                    );
                     start += m;
                 }
                 ChunkResult {
@@ -256,7 +261,9 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
                         start,
                         n,
                     };
-                    block(prepared, f32s, receiver, s, start, m, coords, &mut hits);
+                    block(
+                        isa, prepared, f32s, receiver, s, start, m, coords, &mut hits,
+                    );
                     start += m;
                 }
                 ChunkResult {

@@ -25,6 +25,7 @@ use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
     sample_uniform_hemisphere, LightSampler, PolygonSolidAngle, SphereSolidAngle,
 };
+use lambert_sampling::isa::Isa;
 
 use super::cone_mis::ConeMis;
 use super::emitter_light::{
@@ -36,6 +37,34 @@ use super::{
 };
 
 impl PreparedEmitter {
+    /// [`add_batch`](Self::add_batch) compiled for instruction set `isa`
+    /// ([`Isa::run`]): the same values to the bit in every set.
+    ///
+    /// This is the one place the f64 kernels are instantiated, once per
+    /// set. It is never inlined, so a chunk loop that calls it per block
+    /// (independent samples, each sequence, the f32 path's f64 emitters)
+    /// shares these copies instead of carrying its own: inlining every
+    /// kernel into every chunk loop multiplied the estimator's build time
+    /// by the number of loops, for no gain (the call is once per block of
+    /// hundreds of samples).
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn add_batch_in(
+        &self,
+        isa: Isa,
+        receiver: &Receiver,
+        ux: &[f64],
+        uy: &[f64],
+        vx: &[f64],
+        vy: &[f64],
+        out: &mut [f64],
+    ) -> PartHits {
+        isa.run(
+            #[inline(always)]
+            || self.add_batch(receiver, ux, uy, vx, vy, out),
+        )
+    }
+
     /// Adds this emitter's estimate for samples `i` of a block to `out[i]`:
     /// `out[i] += F((ux[i], uy[i]), (vx[i], vy[i]))`, the value of
     /// [`evaluate_u`](Self::evaluate_u) to the bit (the light shortcut for

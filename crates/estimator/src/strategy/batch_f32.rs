@@ -31,6 +31,7 @@ use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
     sample_uniform_sphere, LightSampler, PolygonSolidAngle, UniformCone,
 };
+use lambert_sampling::isa::Isa;
 
 use super::cone_mis::ConeMisF32;
 use super::prepared_f32::{Area, Light, PreparedEmitterF32, Projected, Shape};
@@ -155,6 +156,27 @@ fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
 }
 
 impl PreparedEmitterF32 {
+    /// [`add_batch`](Self::add_batch) compiled for instruction set `isa`
+    /// ([`Isa::run`]): the same values to the bit in every set. The one
+    /// place the f32 kernels are instantiated, once per set, and never
+    /// inlined, for the reason [`PreparedEmitter::add_batch_in`](super::PreparedEmitter::add_batch_in)
+    /// gives.
+    #[inline(never)]
+    pub fn add_batch_in(
+        &self,
+        isa: Isa,
+        ux: &[f32],
+        uy: &[f32],
+        vx: &[f32],
+        vy: &[f32],
+        out: &mut [f64],
+    ) -> PartHits {
+        isa.run(
+            #[inline(always)]
+            || self.add_batch(ux, uy, vx, vy, out),
+        )
+    }
+
     /// Adds this emitter's estimate for samples `i` of a block to `out[i]`:
     /// `out[i] += L·g((ux[i], uy[i]), (vx[i], vy[i]))` with g in f32
     /// (module docs), over the shortest of the slices (`vx`, `vy` are read

@@ -283,9 +283,9 @@ impl PreparedEmitter {
     /// ([`parts`](Self::parts)), how many samples had a non-zero value
     /// there (counted in the same pass, without a branch). The points are
     /// split into coordinate arrays a block at a time and run through
-    /// [`add_batch`](Self::add_batch) (one specialised loop per technique
-    /// and emitter kind); call `add_batch` directly, inside
-    /// [`Isa::run`](lambert_sampling::isa::Isa::run), to use wide vectors.
+    /// [`add_batch_in`](Self::add_batch_in) (one specialised loop per
+    /// technique and emitter kind) with the process's instruction set,
+    /// [`Isa::selected`](lambert_sampling::isa::Isa::selected).
     pub fn evaluate_batch(
         &self,
         receiver: &Receiver,
@@ -294,6 +294,7 @@ impl PreparedEmitter {
         out: &mut [f64],
     ) -> PartHits {
         const BLOCK: usize = 256;
+        let isa = lambert_sampling::isa::Isa::selected();
         let mut hits = [0u64; 2];
         let mis = self.technique.dimensions() > 1;
         let mut c = [[0.0f64; BLOCK]; 4];
@@ -310,7 +311,8 @@ impl PreparedEmitter {
                     (vx[k], vy[k]) = (u2[start + k].x, u2[start + k].y);
                 }
             }
-            let h = self.add_batch(
+            let h = self.add_batch_in(
+                isa,
                 receiver,
                 &ux[..m],
                 &uy[..m],
