@@ -190,11 +190,17 @@ impl DiskLight {
     /// The radiance arriving at `origin` from the unit direction `w`: L if
     /// the ray meets the disk on an emitting side (both, or the side its
     /// normal faces), else 0.
+    ///
+    /// Both tests run for every direction (`&`, not `&&`): the ray test is
+    /// a few branch-free operations, and without the short circuit a loop
+    /// over many directions reads the disk once, before the loop, and
+    /// vectorises (under the branch its fields were gathered again per
+    /// direction).
     #[inline]
     pub fn radiance_toward(&self, origin: DVec3, w: DVec3) -> f64 {
         let ray = Ray::new(origin, w);
-        if (self.two_sided || w.dot(self.disk.normal()) < 0.0)
-            && self.disk.hit_distance(&ray, f64::INFINITY).is_some()
+        if (self.two_sided | (w.dot(self.disk.normal()) < 0.0))
+            & self.disk.hit_distance(&ray, f64::INFINITY).is_some()
         {
             self.radiance
         } else {
