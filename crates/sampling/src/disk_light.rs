@@ -394,12 +394,11 @@ macro_rules! disk_light_impl {
             /// fraction u₁ of its value on the rim.
             #[inline]
             pub(crate) fn local_direction(&self, q: usize, n: Real, m: Real, u1: Real) -> V3 {
-                let (sx, sy) = match q {
-                    0 => (1.0, 1.0),
-                    1 => (-1.0, 1.0),
-                    2 => (-1.0, -1.0),
-                    _ => (1.0, -1.0),
-                };
+                // The signs of quadrants 0 (+, +), 1 (−, +), 2 (−, −) and
+                // 3 (+, −), as selects: a `match` is a switch, which keeps
+                // a loop over many samples from vectorising.
+                let sx = if (q == 1) | (q == 2) { -1.0 } else { 1.0 };
+                let sy = if q >= 2 { -1.0 } else { 1.0 };
                 let (px, py) = (self.a * m, self.b * n);
                 let re2 = px * px + py * py;
                 let re = re2.sqrt();
@@ -415,10 +414,16 @@ macro_rules! disk_light_impl {
                 V3::new(sx * sin_t * lx, sy * sin_t * ly, cos_t)
             }
 
+            /// The local direction `l` (principal frame) in world space.
+            #[inline(always)]
+            pub(crate) fn world(&self, l: V3) -> V3 {
+                self.x_axis * l.x + self.y_axis * l.y + self.z_axis * l.z
+            }
+
             /// The light sample of the local direction `l`.
             #[inline]
             pub(crate) fn light_sample(&self, l: V3) -> LightSample {
-                let w = self.x_axis * l.x + self.y_axis * l.y + self.z_axis * l.z;
+                let w = self.world(l);
                 let distance = self.height / self.normal.dot(w);
                 LightSample {
                     direction: w,

@@ -58,9 +58,33 @@ const GAUSS_LEGENDRE: [&[(f64, f64)]; 9] = [
     ],
 ];
 
+/// [`GAUSS_LEGENDRE`] with every rule padded to 8 points by (0, 0). A
+/// padding point adds 0/(1 + cos θₑ) = +0 to the rule's sum, which leaves
+/// the sum as it was, so a loop over all 8 gives each rule's sum to the
+/// bit without a branch on its length (the batch sampler's loop
+/// vectorises across samples of different intervals).
+const GAUSS_PADDED: [[(f64, f64); 8]; 9] = {
+    let mut padded = [[(0.0, 0.0); 8]; 9];
+    let mut g = 0;
+    while g < GAUSS_LEGENDRE.len() {
+        let mut k = 0;
+        while k < GAUSS_LEGENDRE[g].len() {
+            padded[g][k] = GAUSS_LEGENDRE[g][k];
+            k += 1;
+        }
+        g += 1;
+    }
+    padded
+};
+
+/// How many samples [`f64::TabulatedDiskSolidAngle::sample_directions`]
+/// takes through the table at a time (a few arrays of that length on the
+/// stack).
+const TABLE_LANES: usize = 64;
+
 macro_rules! disk_table_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
-        use super::GAUSS_LEGENDRE;
+        use super::{GAUSS_LEGENDRE, GAUSS_PADDED, TABLE_LANES};
         use crate::disk_light::$p::DiskSolidAngle;
         use crate::light_sample::$p::LightSample;
         use crate::segment::$p::CBRT_EPSILON;
@@ -236,6 +260,96 @@ macro_rules! disk_table_impl {
                     .light_sample(self.disk.local_direction(q, n, m, u.y))
             }
 
+            /// The directions of [`sample`](Self::sample) for a block of
+            /// points, to the bit: `(dx[i], dy[i], dz[i])` is the direction
+            /// for u = (`ux[i]`, `uy[i]`), over the shortest of the slices.
+            /// Every direction's density is 1/Ω.
+            ///
+            /// The table's answer is computed for every sample in one
+            /// branch-free pass, which vectorises across samples: the
+            /// quadrature runs all 8 points of the padded rule (zero weights
+            /// beyond the interval's own, which add +0), and a sample the
+            /// table cannot answer (an interval without a rule, or a
+            /// Halley step too long to accept) is marked and then sampled
+            /// one at a time as `sample` does, by Carlson's integrals. A
+            /// circle (the reference on the disk's axis) has no table and
+            /// takes `sample` per point.
+            #[inline(always)]
+            pub fn sample_directions(
+                &self,
+                ux: &[Real],
+                uy: &[Real],
+                dx: &mut [Real],
+                dy: &mut [Real],
+                dz: &mut [Real],
+            ) {
+                let n = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len());
+                let (ux, uy) = (&ux[..n], &uy[..n]);
+                let (dx, dy, dz) = (&mut dx[..n], &mut dy[..n], &mut dz[..n]);
+                if let Some(nodes) = self.table() {
+                    let mut start = 0;
+                    while start < n {
+                        let r = start..start + TABLE_LANES.min(n - start);
+                        start = r.end;
+                        let (x, y) = (&ux[r.clone()], &uy[r.clone()]);
+                        let d = (&mut dx[r.clone()], &mut dy[r.clone()], &mut dz[r]);
+                        self.directions_by_table(nodes, x, y, d);
+                    }
+                }
+                // The samples the table did not answer (all of them for a
+                // circle): one at a time.
+                for i in 0..n {
+                    if dx[i].is_nan() || self.nodes.is_empty() {
+                        let w = self.sample(V2::new(ux[i], uy[i])).direction;
+                        (dx[i], dy[i], dz[i]) = (w.x, w.y, w.z);
+                    }
+                }
+            }
+
+            /// [`sample_directions`](Self::sample_directions) for at most
+            /// [`TABLE_LANES`] samples, by the table; NaN in `dx` marks a
+            /// sample it did not answer. Three passes over the samples,
+            /// each a loop without branches that vectorises (as one loop,
+            /// the body was too large for the compiler to vectorise): the
+            /// interval and the Hermite guess; the rule's points, one point
+            /// of every sample at a time (each sample's sum adds its terms
+            /// in the order [`solve`](Self::solve) does); the Halley step
+            /// and the direction.
+            #[inline(always)]
+            fn directions_by_table(
+                &self,
+                nodes: &[Node; Self::INTERVALS + 1],
+                ux: &[Real],
+                uy: &[Real],
+                (dx, dy, dz): (&mut [Real], &mut [Real], &mut [Real]),
+            ) {
+                let m = ux.len().min(uy.len()).min(TABLE_LANES);
+                let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
+                let mut interval = [0usize; TABLE_LANES];
+                let mut offset = [0.0 as Real; TABLE_LANES];
+                let mut sum = [0.0 as Real; TABLE_LANES];
+                for i in 0..m {
+                    let (j, x) = self.table_start(nodes, self.disk.quadrant(ux[i]).1);
+                    (interval[i], offset[i]) = (j, x);
+                }
+                for k in 0..8 {
+                    for i in 0..m {
+                        let a = &nodes[interval[i].min(Self::INTERVALS - 1)];
+                        let (y, w) = GAUSS_PADDED[usize::from(a.gauss).min(8)][k];
+                        sum[i] += self.gauss_term(a, offset[i], y, w);
+                    }
+                }
+                for i in 0..m {
+                    let (q, target) = self.disk.quadrant(ux[i]);
+                    let a = &nodes[interval[i].min(Self::INTERVALS - 1)];
+                    let (sin, cos, answered) = self.halley_finish(a, offset[i], sum[i], target);
+                    let w = self.disk.world(self.disk.local_direction(q, sin, cos, uy[i]));
+                    // NaN marks a sample to redo (a direction is never NaN).
+                    dx[i] = if answered { w.x } else { Real::NAN };
+                    (dy[i], dz[i]) = (w.y, w.z);
+                }
+            }
+
             /// [`DiskSolidAngle::pdf`]: 1/Ω inside the disk's cone, else 0.
             #[inline]
             pub fn pdf(&self, w: V3) -> Real {
@@ -273,19 +387,21 @@ macro_rules! disk_table_impl {
                     .collect()
             }
 
-            /// (sin τ, cos τ, Carlson evaluations) with K(τ) = `target`
-            /// (type docs).
-            #[inline]
-            fn solve(&self, target: Real) -> (Real, Real, usize) {
-                if self.nodes.is_empty() {
-                    return self.disk.solve(target);
-                }
+            /// The table's nodes, or `None` for a circle (no table).
+            #[inline(always)]
+            fn table(&self) -> Option<&[Node; Self::INTERVALS + 1]> {
+                (&*self.nodes).try_into().ok()
+            }
+
+            /// The interval j of `target` and the start x ∈ [0, τⱼ₊₁ − τⱼ]
+            /// of the solve in it: the cubic Hermite interpolant of τ(K)
+            /// on [Kⱼ, Kⱼ₊₁], less τⱼ. x is 0 in an interval without a
+            /// rule (which may be longer than the rotation's polynomials
+            /// allow; its sample is not answered by the table).
+            #[inline(always)]
+            fn table_start(&self, nodes: &[Node; Self::INTERVALS + 1], target: Real) -> (usize, Real) {
                 let j = ((target * self.per_interval) as usize).min(Self::INTERVALS - 1);
-                let (a, b) = (&self.nodes[j], &self.nodes[j + 1]);
-                if a.gauss == 0 {
-                    return self.disk.solve(target);
-                }
-                // Cubic Hermite interpolant of τ(K) on [Kⱼ, Kⱼ₊₁].
+                let (a, b) = (&nodes[j], &nodes[j + 1]);
                 let dk = b.sector - a.sector;
                 let s = ((target - a.sector) / dk).clamp(0.0, 1.0);
                 let r = 1.0 - s;
@@ -294,14 +410,24 @@ macro_rules! disk_table_impl {
                 // max/min, not clamp, which panics on unordered or NaN
                 // bounds (degenerate geometry).
                 let x = (guess - a.tau).max(0.0).min(b.tau - a.tau);
-                // K(τⱼ + x) by the interval's rule.
-                let mut sum = 0.0;
-                for &(y, w) in GAUSS_LEGENDRE[a.gauss as usize] {
-                    let (sy, cy) = sin_cos_quarter(x * y as Real);
-                    sum += w as Real / (1.0 + self.disk.rim_cos(a.sin * cy + a.cos * sy));
-                }
+                (j, if a.gauss != 0 { x } else { 0.0 })
+            }
+
+            /// One point (y, w) of the rule for K(τⱼ + x) − K(τⱼ) on the
+            /// interval starting at node `a`: w/(1 + cos θₑ(τⱼ + xy)).
+            #[inline(always)]
+            fn gauss_term(&self, a: &Node, x: Real, y: f64, w: f64) -> Real {
+                let (sy, cy) = sin_cos_quarter(x * y as Real);
+                w as Real / (1.0 + self.disk.rim_cos(a.sin * cy + a.cos * sy))
+            }
+
+            /// From K(τⱼ + x) − K(τⱼ) = x·`sum`, one Halley step (as in
+            /// [`DiskSolidAngle::solve`]) to (sin τ, cos τ), and whether
+            /// the table answers: the interval has a rule and the step is
+            /// short enough to accept without evaluating K again.
+            #[inline(always)]
+            fn halley_finish(&self, a: &Node, x: Real, sum: Real, target: Real) -> (Real, Real, bool) {
                 let f = a.sector + x * sum - target;
-                // Halley's step, as in DiskSolidAngle::solve.
                 let (sx, cx) = sin_cos_quarter(x);
                 let (n, m) = (a.sin * cx + a.cos * sx, a.cos * cx - a.sin * sx);
                 let c = self.disk.rim_cos(n);
@@ -313,13 +439,36 @@ macro_rules! disk_table_impl {
                 } else {
                     (f / slope, self.accept_newton)
                 };
-                if !(step.abs() <= accept) {
-                    return self.disk.solve(target);
-                }
+                let answered = (a.gauss != 0) & (step.abs() <= accept);
+                // A step not taken stays inside the polynomials' range.
+                let step = if answered { step } else { 0.0 };
                 let (sx, cx) = sin_cos_quarter(x - step);
                 let n = (a.sin * cx + a.cos * sx).clamp(0.0, 1.0);
                 let m = (a.cos * cx - a.sin * sx).clamp(0.0, 1.0);
-                (n, m, 0)
+                (n, m, answered)
+            }
+
+            /// (sin τ, cos τ, Carlson evaluations) with K(τ) = `target`
+            /// (type docs).
+            #[inline]
+            fn solve(&self, target: Real) -> (Real, Real, usize) {
+                let Some(nodes) = self.table() else {
+                    return self.disk.solve(target);
+                };
+                let (j, x) = self.table_start(nodes, target);
+                let a = &nodes[j];
+                if a.gauss == 0 {
+                    return self.disk.solve(target);
+                }
+                // K(τⱼ + x) by the interval's rule.
+                let mut sum = 0.0;
+                for &(y, w) in GAUSS_LEGENDRE[a.gauss as usize] {
+                    sum += self.gauss_term(a, x, y, w);
+                }
+                match self.halley_finish(a, x, sum, target) {
+                    (n, m, true) => (n, m, 0),
+                    _ => self.disk.solve(target),
+                }
             }
         }
 
@@ -430,6 +579,71 @@ mod tests {
                     "f32 disk {k}, u {u}: {error:e}"
                 );
                 assert_eq!(table.sector_evaluations(u), 0, "f32 disk {k}, u {u}");
+            }
+        }
+    }
+
+    /// The batch gives `sample`'s directions to the bit, in both
+    /// precisions, for every disk (the circle seen from its axis too, and
+    /// the last disk, whose samples partly fall back to Carlson's
+    /// integrals: the marked lanes are redone). Negative control: the
+    /// comparison is exact, so a batch that returned the fast path's value
+    /// for a fallen-back sample would fail; the fallback count shows the
+    /// last disk has such samples.
+    #[test]
+    fn batch_directions_are_the_sample_directions() {
+        let coaxial = (DVec3::new(0.0, 0.0, 2.0), DVec3::NEG_Z, 0.5);
+        for (k, &(c, n, r)) in DISKS.iter().chain([&coaxial]).enumerate() {
+            let plain =
+                crate::f64::DiskSolidAngle::new(DVec3::ZERO, &Disk::new(c, n, r).unwrap()).unwrap();
+            let table = TabulatedDiskSolidAngle::new(plain);
+            let us: Vec<DVec2> = grid().collect();
+            let (ux, uy): (Vec<f64>, Vec<f64>) = us.iter().map(|u| (u.x, u.y)).unzip();
+            let mut d = [
+                vec![0.0; us.len()],
+                vec![0.0; us.len()],
+                vec![0.0; us.len()],
+            ];
+            let [dx, dy, dz] = &mut d;
+            table.sample_directions(&ux, &uy, dx, dy, dz);
+            let mut fallbacks = 0;
+            for (i, &u) in us.iter().enumerate() {
+                let want = table.sample(u).direction;
+                assert_eq!(
+                    [dx[i], dy[i], dz[i]].map(f64::to_bits),
+                    want.to_array().map(f64::to_bits),
+                    "disk {k}, u {u}"
+                );
+                fallbacks += usize::from(table.sector_evaluations(u) > 0);
+            }
+            assert_eq!(fallbacks > 0, k + 1 == DISKS.len(), "disk {k}");
+            if k >= 5 {
+                continue;
+            }
+            let disk = lambert_geometry::f32::Disk::new(c.as_vec3(), n.as_vec3(), r as f32);
+            let plain = crate::f32::DiskSolidAngle::new(Vec3::ZERO, &disk.unwrap()).unwrap();
+            let table = super::f32::TabulatedDiskSolidAngle::new(plain);
+            let (ux, uy): (Vec<f32>, Vec<f32>) =
+                us.iter().map(|u| (u.x as f32, u.y as f32)).unzip();
+            let mut d = [
+                vec![0.0; us.len()],
+                vec![0.0; us.len()],
+                vec![0.0; us.len()],
+            ];
+            let [dx, dy, dz] = &mut d;
+            // A shorter output cuts the batch.
+            table.sample_directions(&ux, &uy, dx, dy, &mut dz[..100]);
+            for i in 0..us.len() {
+                let want = table.sample(Vec2::new(ux[i], uy[i])).direction;
+                let got = if i < 100 {
+                    [dx[i], dy[i], dz[i]]
+                } else {
+                    want.to_array()
+                };
+                assert_eq!(got.map(f32::to_bits), want.to_array().map(f32::to_bits));
+                if i >= 100 {
+                    assert_eq!(dx[i], 0.0, "written beyond the batch");
+                }
             }
         }
     }

@@ -24,13 +24,14 @@ use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
     sample_uniform_hemisphere, LightSampler, PolygonSolidAngle, SphereSolidAngle,
+    TabulatedDiskSolidAngle,
 };
 use lambert_sampling::isa::Isa;
 
 use super::cone_mis::ConeMis;
 use super::emitter_light::{
-    sample_cap, sample_disk, sample_disk_table, sample_polygon, sample_rectangle,
-    sample_single_triangle, sample_sky, sample_sphere,
+    disk_table_direction, sample_cap, sample_disk, sample_disk_table, sample_polygon,
+    sample_rectangle, sample_single_triangle, sample_sky, sample_sphere,
 };
 use super::{
     EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
@@ -160,7 +161,7 @@ impl PreparedEmitter {
                         receiver,
                         lit,
                         #[inline(always)]
-                        |u| sample_single_triangle(single, u),
+                        |_, u| sample_single_triangle(single, u),
                         #[inline(always)]
                         |w| single.pdf(w),
                         &block,
@@ -178,7 +179,7 @@ impl PreparedEmitter {
                         receiver,
                         lit,
                         #[inline(always)]
-                        |u| sample_rectangle(r, u),
+                        |_, u| sample_rectangle(r, u),
                         #[inline(always)]
                         |w| r.pdf(w),
                         &block,
@@ -224,18 +225,26 @@ impl PreparedEmitter {
                 &block,
                 out,
             ),
-            (EmitterLight::DiskTable(d), Emitter::Disk(e)) => technique_batch(
-                self,
-                receiver,
-                #[inline(always)]
-                |w| e.radiance_toward(p, w),
-                #[inline(always)]
-                |u| sample_disk_table(d, u),
-                #[inline(always)]
-                |w| d.pdf(w),
-                &block,
-                out,
-            ),
+            (EmitterLight::DiskTable(d), Emitter::Disk(e)) => {
+                let lit = hoisted(
+                    #[inline(always)]
+                    |w| e.radiance_toward(p, w),
+                );
+                if let Some(hits) = disk_table_batch(self, receiver, d, &lit, &block, out) {
+                    return hits;
+                }
+                technique_batch(
+                    self,
+                    receiver,
+                    lit,
+                    #[inline(always)]
+                    |u| sample_disk_table(d, u),
+                    #[inline(always)]
+                    |w| d.pdf(w),
+                    &block,
+                    out,
+                )
+            }
             // No light sampler (an invisible light): light samples are
             // none, the other techniques still look the emitter up.
             _ => technique_batch(
@@ -361,13 +370,15 @@ fn polygon_lookup<const N: usize>(
 /// [`technique_batch`]'s light-sampling techniques only (light, MIS):
 /// their loops for a light sampler specialised to one shape, without
 /// compiling every other technique's loop again for it. `None` for the
-/// other techniques.
+/// other techniques. The sampler is given each sample's index in the block
+/// and its coordinates (`u` for light sampling, `v` for MIS), so that it
+/// may read directions drawn beforehand ([`disk_table_batch`]).
 #[inline(always)]
 fn sampled_batch(
     emitter: &PreparedEmitter,
     receiver: &Receiver,
     radiance: impl Fn(DVec3) -> f64,
-    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
+    light_sample: impl Fn(usize, DVec2) -> Option<LightDirection>,
     light_pdf: impl Fn(DVec3) -> f64,
     block: &Block<'_>,
     out: &mut [f64],
@@ -396,6 +407,73 @@ fn sampled_batch(
     }
 }
 
+/// Light sampling and MIS of a disk through its tabulated sampler: the
+/// light directions of [`DISK_TABLE_BATCH`] samples at a time are drawn
+/// first, by the sampler's batch
+/// ([`TabulatedDiskSolidAngle::sample_directions`], which vectorises: the
+/// per-sample sampler is a table lookup and a variable-length quadrature
+/// that do not), and the light and MIS loops then read them. The same
+/// directions and densities as [`sample_disk_table`], so the same values
+/// to the bit. `None` for the other techniques.
+#[inline(always)]
+fn disk_table_batch(
+    emitter: &PreparedEmitter,
+    receiver: &Receiver,
+    disk: &TabulatedDiskSolidAngle,
+    radiance: impl Fn(DVec3) -> f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> Option<PartHits> {
+    let mis = match emitter.technique {
+        Technique::Light => false,
+        Technique::Mis(_) => true,
+        _ => return None,
+    };
+    // The light sample's coordinates: u for light sampling, v for MIS.
+    let (sx, sy) = if mis {
+        (block.vx, block.vy)
+    } else {
+        (block.ux, block.uy)
+    };
+    let disk = &{ disk };
+    let mut directions = [[0.0f64; DISK_TABLE_BATCH]; 3];
+    let mut hits = [0u64; 2];
+    let mut start = 0;
+    while start < out.len() {
+        let m = DISK_TABLE_BATCH.min(out.len() - start);
+        let range = start..start + m;
+        let [dx, dy, dz] = &mut directions;
+        let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
+        disk.sample_directions(&sx[range.clone()], &sy[range.clone()], dx, dy, dz);
+        let (dx, dy, dz) = (&*dx, &*dy, &*dz);
+        let part = Block {
+            ux: &block.ux[range.clone()],
+            uy: &block.uy[range.clone()],
+            vx: if mis { &block.vx[range.clone()] } else { &[] },
+            vy: if mis { &block.vy[range.clone()] } else { &[] },
+        };
+        let got = sampled_batch(
+            emitter,
+            receiver,
+            &radiance,
+            #[inline(always)]
+            |i, _| disk_table_direction(disk, DVec3::new(dx[i], dy[i], dz[i])),
+            #[inline(always)]
+            |w| disk.pdf(w),
+            &part,
+            &mut out[range],
+        )?;
+        hits[0] += got[0];
+        hits[1] += got[1];
+        start += m;
+    }
+    Some(hits)
+}
+
+/// How many light directions [`disk_table_batch`] draws at a time (three
+/// arrays of f64 on the stack, 3 KB).
+const DISK_TABLE_BATCH: usize = 128;
+
 /// L(ω) max(cos θ, 0) from the radiance lookup `radiance`, for the unit
 /// normal `normal`. The lookup runs for every lane and the result is
 /// selected (the same value): under the branch, the emitter's data were
@@ -423,7 +501,7 @@ fn light_batch(
     light_radiance: Option<f64>,
     normal: DVec3,
     radiance_cos: impl Fn(DVec3) -> f64,
-    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
+    light_sample: impl Fn(usize, DVec2) -> Option<LightDirection>,
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
@@ -434,7 +512,7 @@ fn light_batch(
         #[inline(always)]
         |i| {
             // Branch-free, as in `mis_batch`.
-            let (s, drawn) = match light_sample(block.u(i)) {
+            let (s, drawn) = match light_sample(i, block.u(i)) {
                 Some(s) => (s, true),
                 None => (NO_LIGHT_DIRECTION, false),
             };
@@ -518,7 +596,8 @@ fn technique_batch(
             emitter.light_radiance,
             normal,
             &radiance_cos,
-            light_sample,
+            #[inline(always)]
+            |_, u| light_sample(u),
             block,
             out,
         ),
@@ -554,7 +633,8 @@ fn technique_batch(
             receiver,
             emitter.light_radiance,
             radiance_cos,
-            light_sample,
+            #[inline(always)]
+            |_, u| light_sample(u),
             light_pdf,
             block,
             out,
@@ -574,7 +654,7 @@ fn mis_batch(
     receiver: &Receiver,
     light_radiance: Option<f64>,
     radiance_cos: impl Fn(DVec3) -> f64,
-    light_sample: impl Fn(DVec2) -> Option<LightDirection>,
+    light_sample: impl Fn(usize, DVec2) -> Option<LightDirection>,
     light_pdf: impl Fn(DVec3) -> f64,
     block: &Block<'_>,
     out: &mut [f64],
@@ -596,7 +676,7 @@ fn mis_batch(
         let cosine = if p_cos > 0.0 { weighted } else { 0.0 };
         // Also branch-free, for the same reason (a direction and density
         // stand in where the sampler gave none; their value is not used).
-        let (s, drawn) = match light_sample(block.v(i)) {
+        let (s, drawn) = match light_sample(i, block.v(i)) {
             Some(s) => (s, true),
             None => (NO_LIGHT_DIRECTION, false),
         };

@@ -207,3 +207,14 @@ pub(super) fn sample_disk_table(d: &TabulatedDiskSolidAngle, u: DVec2) -> Option
     let l = d.sample(u);
     checked(l.direction, l.pdf)
 }
+
+/// [`sample_disk_table`] for a direction the sampler drew beforehand
+/// ([`TabulatedDiskSolidAngle::sample_directions`]): its density is the
+/// sampler's 1/Ω, computed as the sampler computes it.
+#[inline(always)]
+pub(super) fn disk_table_direction(
+    d: &TabulatedDiskSolidAngle,
+    direction: DVec3,
+) -> Option<LightDirection> {
+    checked(direction, 1.0 / d.solid_angle())
+}
