@@ -3,7 +3,7 @@
 //! it replaces, in f32 and f64, RNG included (as in `warps`): uniform cone
 //! vs projected cap; sphere solid angle vs projected sphere; spherical
 //! triangle and rectangle vs projected polygon; disk area vs disk solid
-//! angle, plain and tabulated (`TabulatedDiskSolidAngle`, and
+//! angle, plain, tabulated and tabulated in batches (`TabulatedDiskSolidAngle`, and
 //! `TabulatedProjectedPolygon` for the non-central square); and, next to
 //! the projected polygon, a prototype of Arvo's 2001 method
 //! (`lambert_benches::arvo`), the alternative to Peters' that the sampling
@@ -266,6 +266,43 @@ fn sampling(c: &mut Criterion) {
         "disk solid angle tabulated",
         |u| table32.sample(u).direction,
         table64.sample(u).direction
+    );
+    // The same directions BATCH at a time by the table's batch, in the
+    // process's instruction set (what the estimator's light and MIS loops
+    // use); the random numbers are drawn into arrays first.
+    macro_rules! disk_batch {
+        ($name:expr, $table:expr, $next:ident, $zero:expr) => {
+            g.bench_function($name, |b| {
+                let (mut r, n) = (rng(), BATCH as usize);
+                let (mut ux, mut uy) = (vec![$zero; n], vec![$zero; n]);
+                let mut d = [vec![$zero; n], vec![$zero; n], vec![$zero; n]];
+                let isa = lambert_sampling::isa::Isa::selected();
+                b.iter(|| {
+                    for (x, y) in ux.iter_mut().zip(uy.iter_mut()) {
+                        let u = $next(&mut r);
+                        (*x, *y) = (u.x, u.y);
+                    }
+                    let [dx, dy, dz] = &mut d;
+                    isa.run(
+                        #[inline(always)]
+                        || $table.sample_directions(&ux, &uy, dx, dy, dz),
+                    );
+                    black_box(dx[0] + dy[n / 2] + dz[n - 1])
+                })
+            });
+        };
+    }
+    disk_batch!(
+        "disk solid angle tabulated batch f32",
+        table32,
+        next_u32x2,
+        0.0f32
+    );
+    disk_batch!(
+        "disk solid angle tabulated batch f64",
+        table64,
+        next_u64x2,
+        0.0f64
     );
     g.finish();
 }

@@ -183,6 +183,8 @@ macro_rules! disk_table_impl {
             nodes: Box<[Node]>,
             /// J / K(π/2): the interval of an area.
             per_interval: Real,
+            /// The most points of any interval's rule (0 for a circle).
+            most_points: usize,
             /// The largest Halley and Newton steps taken without a check.
             accept_halley: Real,
             accept_newton: Real,
@@ -229,8 +231,10 @@ macro_rules! disk_table_impl {
                     }
                 }
                 let scale = d.min(1.0);
+                let most_points = nodes.iter().map(|n| usize::from(n.gauss)).max().unwrap_or(0);
                 TabulatedDiskSolidAngle {
                     disk,
+                    most_points,
                     nodes: nodes.into_boxed_slice(),
                     per_interval: intervals as Real / quarter,
                     accept_halley: 0.25 * CBRT_EPSILON * scale,
@@ -265,11 +269,11 @@ macro_rules! disk_table_impl {
             /// for u = (`ux[i]`, `uy[i]`), over the shortest of the slices.
             /// Every direction's density is 1/Ω.
             ///
-            /// The table's answer is computed for every sample in one
-            /// branch-free pass, which vectorises across samples: the
-            /// quadrature runs all 8 points of the padded rule (zero weights
-            /// beyond the interval's own, which add +0), and a sample the
-            /// table cannot answer (an interval without a rule, or a
+            /// The table's answer is computed for every sample in
+            /// branch-free passes, which vectorise across samples: the
+            /// quadrature runs as many points as the table's longest rule
+            /// (zero weights beyond the interval's own, which add +0), and
+            /// a sample the table cannot answer (an interval without a rule, or a
             /// Halley step too long to accept) is marked and then sampled
             /// one at a time as `sample` does, by Carlson's integrals. A
             /// circle (the reference on the disk's axis) has no table and
@@ -311,10 +315,11 @@ macro_rules! disk_table_impl {
             /// sample it did not answer. Three passes over the samples,
             /// each a loop without branches that vectorises (as one loop,
             /// the body was too large for the compiler to vectorise): the
-            /// interval and the Hermite guess; the rule's points, one point
-            /// of every sample at a time (each sample's sum adds its terms
-            /// in the order [`solve`](Self::solve) does); the Halley step
-            /// and the direction.
+            /// interval and the Hermite guess; the rules' points, one point
+            /// of every sample at a time, as many as the longest rule of
+            /// the table has (each sample's sum adds its terms in the order
+            /// [`solve`](Self::solve) does); the Halley step and the
+            /// direction.
             #[inline(always)]
             fn directions_by_table(
                 &self,
@@ -332,7 +337,8 @@ macro_rules! disk_table_impl {
                     let (j, x) = self.table_start(nodes, self.disk.quadrant(ux[i]).1);
                     (interval[i], offset[i]) = (j, x);
                 }
-                for k in 0..8 {
+                // Points beyond a sample's own rule add +0 (`GAUSS_PADDED`).
+                for k in 0..self.most_points.min(8) {
                     for i in 0..m {
                         let a = &nodes[interval[i].min(Self::INTERVALS - 1)];
                         let (y, w) = GAUSS_PADDED[usize::from(a.gauss).min(8)][k];

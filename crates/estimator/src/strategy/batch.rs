@@ -230,7 +230,7 @@ impl PreparedEmitter {
                     #[inline(always)]
                     |w| e.radiance_toward(p, w),
                 );
-                if let Some(hits) = disk_table_batch(self, receiver, d, &lit, &block, out) {
+                if let Some(hits) = disk_table_batch(self, receiver, d, lit, &block, out) {
                     return hits;
                 }
                 technique_batch(
