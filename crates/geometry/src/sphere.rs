@@ -149,7 +149,7 @@ macro_rules! sphere_impl {
         }
 
         impl Intersect for Sphere {
-            #[inline]
+            #[inline(always)]
             fn hit_distance(&self, ray: &Ray, t_max: Real) -> Option<Real> {
                 let (hit, t) = self.lane(ray.origin, ray.direction);
                 (hit && t < t_max).then_some(t)

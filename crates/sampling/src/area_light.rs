@@ -78,7 +78,7 @@ macro_rules! area_light_impl {
         }
 
         impl LightSampler for SphereAreaSampler {
-            #[inline]
+            #[inline(always)]
             fn sample(&self, reference: V3, _normal: V3, u: V2) -> Option<LightSample> {
                 let (c, r) = (self.sphere.center(), self.sphere.radius());
                 let n = sample_uniform_sphere(u);
@@ -151,7 +151,7 @@ macro_rules! area_light_impl {
         }
 
         impl LightSampler for DiskAreaSampler {
-            #[inline]
+            #[inline(always)]
             fn sample(&self, reference: V3, _normal: V3, u: V2) -> Option<LightSample> {
                 seen_from(reference, self.area.sample(u))
             }

@@ -71,7 +71,10 @@ macro_rules! light_sample_impl {
         /// // Seen edge-on: no solid angle, density 0 (not ∞).
         #[doc = concat!("assert_eq!(pdf_area_to_solid_angle(0.5, ", stringify!($v3), "::ZERO, ", stringify!($v3), "::Z * 2.0, ", stringify!($v3), "::X), 0.0);")]
         /// ```
-        #[inline]
+        ///
+        /// Without branches (the degenerate cases are selected after the
+        /// division), so that a loop of area samples vectorises.
+        #[inline(always)]
         pub fn pdf_area_to_solid_angle(
             pdf_area: Real,
             reference: V3,
@@ -82,15 +85,12 @@ macro_rules! light_sample_impl {
             let d2 = to_ref.length_squared();
             // |cos θ_l| · d = |n · (reference − point)|.
             let cos_times_d = normal.dot(to_ref).abs();
-            if cos_times_d == 0.0 || d2 == 0.0 {
-                return 0.0;
-            }
             // p_A d² / (|n·v|/d) = p_A d³ / |n·v|.
             let pdf = pdf_area * d2 * d2.sqrt() / cos_times_d;
-            if pdf.is_finite() {
-                pdf
-            } else {
+            if (cos_times_d == 0.0) | (d2 == 0.0) | !pdf.is_finite() {
                 0.0
+            } else {
+                pdf
             }
         }
     };

@@ -75,7 +75,7 @@ macro_rules! light_sampler_impl {
         #[doc = concat!("let l = seen_from(", stringify!($v3), "::ZERO, s).unwrap();")]
         #[doc = concat!("assert_eq!((l.direction, l.distance, l.pdf), (", stringify!($v3), "::Z, 2.0, 2.0));")]
         /// ```
-        #[inline]
+        #[inline(always)]
         pub fn seen_from(reference: V3, s: PointSample) -> Option<LightSample> {
             let to = s.point - reference;
             let distance = to.length();

@@ -174,8 +174,10 @@ impl SkyCap {
 
 impl SphereLight {
     /// The radiance arriving at `origin` (outside the sphere) from the unit
-    /// direction `w`: L if the ray meets the sphere, else 0.
-    #[inline]
+    /// direction `w`: L if the ray meets the sphere, else 0. Always
+    /// inlined: the batch loops over a sphere call it per sample, and out of
+    /// line it ran in the baseline instruction set.
+    #[inline(always)]
     pub fn radiance_toward(&self, origin: DVec3, w: DVec3) -> f64 {
         let ray = Ray::new(origin, w);
         if self.sphere.hit_distance(&ray, f64::INFINITY).is_some() {
