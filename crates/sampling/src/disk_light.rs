@@ -8,6 +8,7 @@ macro_rules! disk_light_impl {
         use crate::light_sample::$p::LightSample;
         use crate::light_sampler::$p::LightSampler;
         use crate::segment::$p::CBRT_EPSILON;
+        use crate::trig::$p::sin_cos;
         use lambert_geometry::precision::$p::{wide3, Real, ONE_MINUS_EPSILON, PI, V2, V3};
         use lambert_geometry::$p::Disk;
 
@@ -301,15 +302,13 @@ macro_rules! disk_light_impl {
             pub(crate) fn solve(&self, target: Real) -> (Real, Real, usize) {
                 let half_pi = 0.5 * PI;
                 let (mut lo, mut hi) = (0.0 as Real, half_pi);
+                if self.ecc == 0.0 {
+                    let (n, m) = self.circle_solve(target);
+                    return (n, m, 0);
+                }
                 // The linear guess lies right of the root (K is concave).
                 let mut tau = (target / self.quarter).clamp(0.0, 1.0) * half_pi;
                 let (mut n, mut m) = tau.sin_cos();
-                if self.ecc == 0.0 {
-                    // A circle (the reference on the disk's axis): cos θₑ
-                    // = cos α for every τ, K(τ) = τ/(1 + cos α) is linear
-                    // and the linear guess is the root.
-                    return (n, m, 0);
-                }
                 let mut steps = 0;
                 while steps < Self::MAX_ITERATIONS {
                     steps += 1;
@@ -368,6 +367,16 @@ macro_rules! disk_light_impl {
                     }
                 }
                 (n, m, steps)
+            }
+
+            /// (sin τ, cos τ) with K(τ) = `target` for a circle (the
+            /// reference on the disk's axis, a = b): cos θₑ = cos α for
+            /// every τ, so K(τ) = τ/(1 + cos α) is linear and its linear
+            /// guess is the root. The sines are our own
+            /// ([`crate::trig`]), which vectorise in a loop over samples.
+            #[inline(always)]
+            pub(crate) fn circle_solve(&self, target: Real) -> (Real, Real) {
+                sin_cos((target / self.quarter).clamp(0.0, 1.0) * (0.5 * PI))
             }
 
             /// The quadrant and in-quadrant area target for u₀.

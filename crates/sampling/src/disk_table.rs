@@ -276,8 +276,8 @@ macro_rules! disk_table_impl {
             /// a sample the table cannot answer (an interval without a rule, or a
             /// Halley step too long to accept) is marked and then sampled
             /// one at a time as `sample` does, by Carlson's integrals. A
-            /// circle (the reference on the disk's axis) has no table and
-            /// takes `sample` per point.
+            /// circle (the reference on the disk's axis) needs neither
+            /// table nor solve, and is one branch-free pass.
             #[inline(always)]
             pub fn sample_directions(
                 &self,
@@ -290,6 +290,16 @@ macro_rules! disk_table_impl {
                 let n = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len());
                 let (ux, uy) = (&ux[..n], &uy[..n]);
                 let (dx, dy, dz) = (&mut dx[..n], &mut dy[..n], &mut dz[..n]);
+                if self.disk.ecc == 0.0 {
+                    // A circle: no table, and no solve either.
+                    for i in 0..n {
+                        let (q, target) = self.disk.quadrant(ux[i]);
+                        let (sin, cos) = self.disk.circle_solve(target);
+                        let w = self.disk.world(self.disk.local_direction(q, sin, cos, uy[i]));
+                        (dx[i], dy[i], dz[i]) = (w.x, w.y, w.z);
+                    }
+                    return;
+                }
                 if let Some(nodes) = self.table() {
                     let mut start = 0;
                     while start < n {
@@ -300,8 +310,7 @@ macro_rules! disk_table_impl {
                         self.directions_by_table(nodes, x, y, d);
                     }
                 }
-                // The samples the table did not answer (all of them for a
-                // circle): one at a time.
+                // The samples the table did not answer: one at a time.
                 for i in 0..n {
                     if dx[i].is_nan() || self.nodes.is_empty() {
                         let w = self.sample(V2::new(ux[i], uy[i])).direction;
