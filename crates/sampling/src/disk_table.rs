@@ -390,10 +390,7 @@ macro_rules! disk_table_impl {
                         let by = |g: u8| {
                             let sum: Real = GAUSS_LEGENDRE[g as usize]
                                 .iter()
-                                .map(|&(y, w)| {
-                                    let (sy, cy) = sin_cos_quarter(x * y as Real);
-                                    w as Real / (1.0 + self.disk.rim_cos(a.sin * cy + a.cos * sy))
-                                })
+                                .map(|&(y, w)| self.gauss_term(a, x, y, w))
                                 .sum();
                             a.sector + x * sum
                         };
