@@ -6,6 +6,7 @@ macro_rules! projected_polygon_impl {
         use crate::light_sample::$p::LightSample;
         use crate::light_sampler::$p::{shading_normal, LightSampler};
         use crate::segment::$p::{v_minus_sin, CBRT_EPSILON};
+        use crate::trig::$p::sin_cos;
         use lambert_geometry::precision::$p::{wide3, Real, ONE_MINUS_EPSILON, V2, V3};
         use lambert_geometry::$p::{ConvexPolygon, Frame};
 
@@ -653,7 +654,7 @@ macro_rules! projected_polygon_impl {
             #[inline]
             fn corners(&self, k: usize, delta: Real) -> (Corner, Corner) {
                 let (a, da) = (self.start[k], self.azimuth[k]);
-                let (sin_d, cos_d) = delta.sin_cos();
+                let (sin_d, cos_d) = sin_cos(delta);
                 let d = da * cos_d + V3::new(-da.y, da.x, 0.0) * sin_d;
                 let o = self.corner(a, d, sin_d, self.outer[k]);
                 let i = if self.inner[k] != NONE {
@@ -784,7 +785,7 @@ macro_rules! projected_polygon_impl {
                 let mu = m.z;
                 let gs = self.azimuth[k];
                 let theta = (2.0 * target / mu).min(self.width[k]);
-                let (s, c) = theta.sin_cos();
+                let (s, c) = sin_cos(theta);
                 let g = gs * c + V3::new(-gs.y, gs.x, 0.0) * s;
                 let mxy = V3::new(m.x, m.y, 0.0);
                 let mg = mxy.dot(g);
@@ -807,7 +808,7 @@ macro_rules! projected_polygon_impl {
                 let r2 = ri2 + u1 * gap;
                 let z2 = (zi2 - u1 * gap).max(0.0);
                 let da = self.azimuth[k];
-                let (sin_d, cos_d) = delta.sin_cos();
+                let (sin_d, cos_d) = sin_cos(delta);
                 let d = da * cos_d + V3::new(-da.y, da.x, 0.0) * sin_d;
                 let r = r2.sqrt();
                 V3::new(d.x * r, d.y * r, z2.sqrt())

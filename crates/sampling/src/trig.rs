@@ -108,7 +108,7 @@ macro_rules! trig_impl {
         /// sample's result to the caller while the next is computed). The
         /// loops are over constant lengths and unroll completely.
         #[inline(always)]
-        fn estrin(y: Real, c: &[Real]) -> Real {
+        pub(crate) fn estrin(y: Real, c: &[Real]) -> Real {
             let mut buf = [0.0 as Real; 16];
             let mut n = c.len();
             buf[..n].copy_from_slice(c);
