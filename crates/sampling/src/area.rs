@@ -48,13 +48,13 @@ macro_rules! area_impl {
             }
 
             /// The disk's area πR².
-            #[inline]
+            #[inline(always)]
             pub fn area(&self) -> Real {
                 PI * self.radius * self.radius
             }
 
             /// A point uniform on the disk, density 1/(πR²) per m².
-            #[inline]
+            #[inline(always)]
             pub fn sample(&self, u: V2) -> PointSample {
                 let d = sample_concentric_disk(u) * self.radius;
                 PointSample {

@@ -10,7 +10,7 @@ macro_rules! area_light_impl {
         use crate::area::$p::UniformDiskArea;
         use crate::discrete::$p::pick_by_cumulative;
         use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
-        use crate::light_sampler::$p::{all_below, seen_from, LightSampler};
+        use crate::light_sampler::$p::{all_below, seen_from, seen_from_or_zero, LightSampler};
         use crate::sphere::$p::sample_uniform_sphere;
         use crate::triangle::$p::UniformTriangle;
         use lambert_geometry::precision::$p::{Real, V2, V3};
@@ -75,26 +75,38 @@ macro_rules! area_light_impl {
             pub fn sphere(&self) -> &Sphere {
                 &self.sphere
             }
-        }
 
-        impl LightSampler for SphereAreaSampler {
+            /// [`LightSampler::sample`] without the `Option`: the same
+            /// sample, or one of density 0 where that gives none (a point
+            /// on the hidden side; [`seen_from_or_zero`]). Branch-free, for
+            /// loops over blocks of samples.
             #[inline(always)]
-            fn sample(&self, reference: V3, _normal: V3, u: V2) -> Option<LightSample> {
+            pub fn sample_or_zero(&self, reference: V3, u: V2) -> LightSample {
                 let (c, r) = (self.sphere.center(), self.sphere.radius());
                 let n = sample_uniform_sphere(u);
                 let point = c + n * r;
-                // Hidden unless the surface faces the reference point.
-                if n.dot(reference - point) <= 0.0 {
-                    return None;
-                }
-                seen_from(
+                let l = seen_from_or_zero(
                     reference,
                     PointSample {
                         point,
                         normal: n,
                         pdf_area: 1.0 / self.sphere.area(),
                     },
-                )
+                );
+                // Hidden unless the surface faces the reference point.
+                let faces = n.dot(reference - point) > 0.0;
+                LightSample {
+                    pdf: if faces { l.pdf } else { 0.0 },
+                    ..l
+                }
+            }
+        }
+
+        impl LightSampler for SphereAreaSampler {
+            #[inline(always)]
+            fn sample(&self, reference: V3, _normal: V3, u: V2) -> Option<LightSample> {
+                let l = self.sample_or_zero(reference, u);
+                (l.pdf > 0.0).then_some(l)
             }
 
             #[inline]
@@ -147,6 +159,15 @@ macro_rules! area_light_impl {
             #[inline]
             pub fn disk(&self) -> &Disk {
                 &self.disk
+            }
+
+            /// [`LightSampler::sample`] without the `Option`: the same
+            /// sample, or one of density 0 where that gives none (the disk
+            /// seen edge-on; [`seen_from_or_zero`]). Branch-free, for loops
+            /// over blocks of samples.
+            #[inline(always)]
+            pub fn sample_or_zero(&self, reference: V3, u: V2) -> LightSample {
+                seen_from_or_zero(reference, self.area.sample(u))
             }
         }
 

@@ -59,7 +59,7 @@ macro_rules! disk_impl {
         #[doc = concat!("assert_eq!(pdf_concentric_disk(p), 1.0 / std::", stringify!($p), "::consts::PI);")]
         /// assert!((invert_concentric_disk(p) - u).length() < 1e-5);
         /// ```
-        #[inline]
+        #[inline(always)]
         pub fn sample_concentric_disk(u: V2) -> V2 {
             let (r, s, c) = concentric_polar(u);
             V2::new(r * c, r * s)

@@ -82,7 +82,7 @@ macro_rules! public_api {
             sample_uniform_hemisphere_batch, sample_uniform_hemisphere_soa,
         };
         pub use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
-        pub use crate::light_sampler::$p::{seen_from, LightSampler};
+        pub use crate::light_sampler::$p::{seen_from, seen_from_or_zero, LightSampler};
         pub use crate::polygon_light::$p::{
             PolygonLightSampler, PolygonSolidAngle, SingleTriangle,
         };

@@ -77,15 +77,33 @@ macro_rules! light_sampler_impl {
         /// ```
         #[inline(always)]
         pub fn seen_from(reference: V3, s: PointSample) -> Option<LightSample> {
+            let l = seen_from_or_zero(reference, s);
+            (l.pdf > 0.0).then_some(l)
+        }
+
+        /// [`seen_from`] without the `Option`: the same light sample where
+        /// that gives one, else one with density 0 (its other fields are
+        /// then unspecified, possibly NaN). Branch-free, so that a loop over
+        /// a block of samples vectorises; a caller selects on `pdf > 0`.
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::{seen_from_or_zero, PointSample};")]
+        #[doc = concat!("use glam::", stringify!($v3), ";")]
+        /// // Seen edge-on: no solid angle.
+        #[doc = concat!("let s = PointSample { point: ", stringify!($v3), "::X, normal: ", stringify!($v3), "::Z, pdf_area: 0.5 };")]
+        #[doc = concat!("assert_eq!(seen_from_or_zero(", stringify!($v3), "::ZERO, s).pdf, 0.0);")]
+        /// ```
+        #[inline(always)]
+        pub fn seen_from_or_zero(reference: V3, s: PointSample) -> LightSample {
             let to = s.point - reference;
             let distance = to.length();
             let pdf = pdf_area_to_solid_angle(s.pdf_area, reference, s.point, s.normal);
-            (pdf > 0.0 && distance > 0.0).then(|| LightSample {
+            LightSample {
                 direction: to / distance,
-                pdf,
+                pdf: if distance > 0.0 { pdf } else { 0.0 },
                 point: s.point,
                 distance,
-            })
+            }
         }
 
         /// The unit shading normal of a sampler that weights by cos θ:

@@ -602,6 +602,9 @@ fn technique_batch(
             out,
         ),
         Technique::Area => {
+            if let Some(l) = emitter.area_radiance {
+                return area_known_radiance_batch(&emitter.area, l, normal, block, out);
+            }
             let through = hoisted(
                 #[inline(always)]
                 |s: Option<lambert_sampling::f64::LightSample>| match s {
@@ -639,6 +642,59 @@ fn technique_batch(
             block,
             out,
         ),
+    }
+}
+
+/// Area sampling where every drawn point is known to see radiance `l`
+/// ([`PreparedEmitter::area_radiance`]): L max(n·ω, 0)/p, no lookup.
+/// Spheres and disks draw every lane and select on p > 0
+/// (`sample_or_zero`), so the loop vectorises; a polygon picks its fan
+/// triangle per sample and stays a scalar loop.
+#[inline(always)]
+fn area_known_radiance_batch(
+    area: &EmitterArea,
+    l: f64,
+    normal: DVec3,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    let value = hoisted(
+        #[inline(always)]
+        |s: lambert_sampling::f64::LightSample| {
+            let v = l * s.direction.dot(normal).max(0.0) / s.pdf;
+            if s.pdf > 0.0 {
+                v
+            } else {
+                0.0
+            }
+        },
+    );
+    match area {
+        EmitterArea::Sphere(a, r) => {
+            let (a, p) = (&{ *a }, r.point);
+            single(
+                out,
+                #[inline(always)]
+                |i| value(a.sample_or_zero(p, block.u(i))),
+            )
+        }
+        EmitterArea::Disk(a, r) => {
+            let (a, p) = (&{ *a }, r.point);
+            single(
+                out,
+                #[inline(always)]
+                |i| value(a.sample_or_zero(p, block.u(i))),
+            )
+        }
+        EmitterArea::Polygon(a, r) => single(
+            out,
+            #[inline(always)]
+            |i| match a.sample(r.point, r.normal, block.u(i)) {
+                Some(s) => value(s),
+                None => 0.0,
+            },
+        ),
+        EmitterArea::None => [0, 0],
     }
 }
 

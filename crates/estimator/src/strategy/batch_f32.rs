@@ -386,17 +386,26 @@ impl PreparedEmitterF32 {
             },
         );
         match &self.area {
+            // Every lane drawn, none dropped by a branch (density 0 where
+            // `sample` gives none, which `cos_over_pdf` scores 0): the
+            // loops vectorise.
             Area::Sphere(a) => single(
                 radiance,
                 out,
                 #[inline(always)]
-                |i| through(a.sample(origin, normal, block.u(i))),
+                |i| {
+                    let s = a.sample_or_zero(origin, block.u(i));
+                    cos_over_pdf(normal, s.direction, s.pdf)
+                },
             ),
             Area::Disk(a) => single(
                 radiance,
                 out,
                 #[inline(always)]
-                |i| through(a.sample(origin, normal, block.u(i))),
+                |i| {
+                    let s = a.sample_or_zero(origin, block.u(i));
+                    cos_over_pdf(normal, s.direction, s.pdf)
+                },
             ),
             Area::Polygon(a) => single(
                 radiance,

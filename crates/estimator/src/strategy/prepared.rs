@@ -37,6 +37,10 @@ pub struct PreparedEmitter {
     /// lookup ([`light_sample_radiance`]); `None` where each light sample
     /// must look the emitter up.
     pub(super) light_radiance: Option<f64>,
+    /// The radiance every area sample sees, when it is known without a
+    /// lookup ([`area_sample_radiance`]); `None` where each area sample
+    /// must look the emitter up.
+    pub(super) area_radiance: Option<f64>,
     parts: [PartBound; 2],
 }
 
@@ -94,6 +98,7 @@ impl PreparedEmitter {
             name: "none",
         };
         let light_radiance = light_sample_radiance(emitter, receiver, &light);
+        let area_radiance = area_sample_radiance(emitter, receiver, &area);
         PreparedEmitter {
             emitter: emitter.clone(),
             technique,
@@ -103,6 +108,7 @@ impl PreparedEmitter {
             projected,
             control,
             light_radiance,
+            area_radiance,
             parts: [first.unwrap_or(none), second.unwrap_or(none)],
         }
     }
@@ -205,9 +211,10 @@ impl PreparedEmitter {
                 (Some(s), None) => radiance_cos(s.direction) / s.pdf,
                 (None, _) => 0.0,
             },
-            Technique::Area => match self.area.sample(u) {
-                Some(s) => radiance_cos(s.direction) / s.pdf,
-                None => 0.0,
+            Technique::Area => match (self.area.sample(u), self.area_radiance) {
+                (Some(s), Some(l)) => l * s.direction.dot(receiver.normal).max(0.0) / s.pdf,
+                (Some(s), None) => radiance_cos(s.direction) / s.pdf,
+                (None, _) => 0.0,
             },
             Technique::Mis(h) => {
                 let (cosine, light) = self.mis_parts(receiver, h, u, u2);
@@ -360,6 +367,42 @@ fn light_sample_radiance(
             Some(p.radiance)
         }
         (Emitter::Disk(d), EmitterLight::Disk(_) | EmitterLight::DiskTable(_))
+            if faces(d.two_sided, d.disk.center(), d.disk.normal()) =>
+        {
+            Some(d.radiance)
+        }
+        _ => None,
+    }
+}
+
+/// The radiance that every point drawn by `area` sees from `receiver`,
+/// when it is known without looking the emitter up: each point lies on the
+/// emitter (a sphere's only on the side that faces the receiver, the
+/// sampler drops the others), so the ray toward it meets the emitter there
+/// first, and its emitting side faces the receiver when the light is a
+/// sphere, two-sided, or has the receiver strictly on the side its normal
+/// points to ((p − c)·n > 0 for a point c of its plane). The f32 path has
+/// always taken area samples' radiance so.
+///
+/// The lookup it saves is the ray–shape test of `radiance_toward`, which
+/// for a polygon loops over its edges and kept the area loops scalar.
+/// Where the two differ the sampler is right, as for light samples
+/// ([`light_sample_radiance`]): a point drawn on the rim can give a
+/// direction that rounds to just outside the shape, and the lookup read 0
+/// for it. `None` for a one-sided light seen from its back or its own
+/// plane, and for emitters without area.
+fn area_sample_radiance(emitter: &Emitter, receiver: &Receiver, area: &EmitterArea) -> Option<f64> {
+    let faces = |two_sided: bool, on_plane: DVec3, normal: DVec3| {
+        two_sided || (receiver.point - on_plane).dot(normal) > 0.0
+    };
+    match (emitter, area) {
+        (Emitter::Sphere(s), EmitterArea::Sphere(..)) => Some(s.radiance),
+        (Emitter::Polygon(p), EmitterArea::Polygon(..))
+            if faces(p.two_sided, p.polygon.vertices()[0], p.polygon.normal()) =>
+        {
+            Some(p.radiance)
+        }
+        (Emitter::Disk(d), EmitterArea::Disk(..))
             if faces(d.two_sided, d.disk.center(), d.disk.normal()) =>
         {
             Some(d.radiance)
