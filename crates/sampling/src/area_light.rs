@@ -347,3 +347,56 @@ macro_rules! area_light_impl {
 }
 
 lambert_geometry::both_precisions!(area_light_impl);
+
+#[cfg(test)]
+mod tests {
+    use crate::f64::{DiskAreaSampler, LightSampler, SphereAreaSampler};
+    use glam::{DVec2, DVec3};
+    use lambert_geometry::f64::{Disk, Sphere};
+
+    /// `sample_or_zero` is `sample` without the `Option`: the same bits
+    /// where `sample` gives a sample, density 0 where it gives none (a
+    /// sphere's hidden half; a disk seen edge-on, from its own plane).
+    #[test]
+    fn sample_or_zero_is_sample_without_the_option() {
+        let sphere = SphereAreaSampler::new(Sphere::new(DVec3::new(0.5, 0.0, 4.0), 1.0).unwrap());
+        let disk = DiskAreaSampler::new(Disk::new(DVec3::Z, -DVec3::Z, 1.0).unwrap());
+        let (mut some, mut none) = (0, 0);
+        for (reference, n) in [
+            (DVec3::ZERO, DVec3::Z),
+            (DVec3::new(3.0, 0.0, 1.0), DVec3::X),
+        ] {
+            for i in 0..17 {
+                for j in 0..17 {
+                    let u = DVec2::new(i as f64 / 16.0, j as f64 / 16.0);
+                    let pairs = [
+                        (
+                            sphere.sample(reference, n, u),
+                            sphere.sample_or_zero(reference, u),
+                        ),
+                        (
+                            disk.sample(reference, n, u),
+                            disk.sample_or_zero(reference, u),
+                        ),
+                    ];
+                    for (want, got) in pairs {
+                        match want {
+                            Some(w) => {
+                                some += 1;
+                                assert_eq!(w, got, "u {u}");
+                                assert!(got.pdf > 0.0);
+                            }
+                            None => {
+                                none += 1;
+                                assert_eq!(got.pdf, 0.0, "u {u}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // Both cases are exercised: the sphere's hidden half and the disk
+        // seen from its plane (z = 1) give none.
+        assert!(some > 289 && none > 289, "{some} {none}");
+    }
+}

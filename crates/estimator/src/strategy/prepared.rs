@@ -416,7 +416,7 @@ mod tests {
     use super::{PreparedEmitter, Strategy};
     use crate::strategy::Heuristic;
     use glam::{DVec2, DVec3};
-    use lambert_light::emitter::{DiskLight, Emitter, PolygonLight};
+    use lambert_light::emitter::{DiskLight, Emitter, PolygonLight, SphereLight};
     use lambert_light::receiver::Receiver;
 
     /// A triangle and a disk 2 above the origin whose normals point down
@@ -489,6 +489,48 @@ mod tests {
                 assert_eq!(behind.light_radiance, Some(1.5), "{strategy:?} {e:?}");
                 assert!(values(&behind, &back).iter().all(|v| *v > 0.0));
             }
+        }
+    }
+
+    /// Area samples likewise: the lookup is skipped where the lit side
+    /// faces the receiver (a sphere always), with the looked-up values to
+    /// the bit; seen from the back, a one-sided light is looked up and
+    /// gives nothing, a two-sided one is skipped and lit.
+    #[test]
+    fn area_samples_skip_the_lookup_only_where_the_lit_side_faces_them() {
+        let front = Receiver::new(DVec3::ZERO, DVec3::Z).expect("receiver");
+        let back = Receiver::new(DVec3::new(0.3, 0.2, 6.0), -DVec3::Z).expect("receiver");
+        let sphere =
+            Emitter::Sphere(SphereLight::new(DVec3::new(0.5, 0.0, 4.0), 1.0, 1.5).expect("sphere"));
+        for (e, from) in lights(false)
+            .into_iter()
+            .map(|e| (e, front))
+            .chain([(sphere.clone(), front), (sphere, back)])
+        {
+            let skip = PreparedEmitter::new(&e, &from, Strategy::Area);
+            assert_eq!(skip.area_radiance, Some(1.5), "{e:?}");
+            let lookup = PreparedEmitter {
+                area_radiance: None,
+                ..skip.clone()
+            };
+            let fast = values(&skip, &from);
+            assert_eq!(fast, values(&lookup, &from), "{e:?}");
+            // A sphere's hidden side gives no sample: the visible cap is
+            // (1 − r/d)/2 of its area, 25 % from `back` (d ≈ 2.02) and
+            // 38 % from `front` (d ≈ 4.03), so at least a fifth of the
+            // grid is lit; the triangle and disk are lit everywhere.
+            let lit = fast.iter().filter(|v| **v > 0.0).count();
+            assert!(lit >= fast.len() / 5, "{e:?}: {lit}");
+        }
+        for e in lights(false) {
+            let behind = PreparedEmitter::new(&e, &back, Strategy::Area);
+            assert_eq!(behind.area_radiance, None, "{e:?}");
+            assert!(values(&behind, &back).iter().all(|v| *v == 0.0));
+        }
+        for e in lights(true) {
+            let behind = PreparedEmitter::new(&e, &back, Strategy::Area);
+            assert_eq!(behind.area_radiance, Some(1.5), "{e:?}");
+            assert!(values(&behind, &back).iter().all(|v| *v > 0.0));
         }
     }
 }
