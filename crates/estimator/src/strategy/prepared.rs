@@ -334,14 +334,35 @@ impl PreparedEmitter {
     }
 }
 
+/// The radiance of `emitter` along every direction from `receiver` that
+/// meets it, where one value holds for all of them: a sphere's or a sky
+/// cap's; a polygon's or a disk's when its emitting side faces the
+/// receiver, that is when the light is two-sided or the receiver lies
+/// strictly on the side its normal points to ((p − c)·n > 0 for a point c
+/// of its plane). `None` for a one-sided light seen from its back or from
+/// its own plane, and for the other emitters.
+fn facing_radiance(emitter: &Emitter, receiver: &Receiver) -> Option<f64> {
+    let faces = |two_sided: bool, on_plane: DVec3, normal: DVec3| {
+        two_sided || (receiver.point - on_plane).dot(normal) > 0.0
+    };
+    match emitter {
+        Emitter::Sphere(s) => Some(s.radiance),
+        Emitter::SkyCap(c) => Some(c.radiance),
+        Emitter::Polygon(p) => {
+            faces(p.two_sided, p.polygon.vertices()[0], p.polygon.normal()).then_some(p.radiance)
+        }
+        Emitter::Disk(d) => {
+            faces(d.two_sided, d.disk.center(), d.disk.normal()).then_some(d.radiance)
+        }
+        _ => None,
+    }
+}
+
 /// The radiance that every direction drawn by `light` at `receiver` sees,
-/// when it is known without looking the emitter up:
-/// - a sphere's or a sky cap's cone lies wholly on the emitter;
-/// - a polygon's or a disk's solid-angle sampler draws directions inside
-///   the shape seen from the receiver, so each one meets it; the emitting
-///   side faces every such direction when the light is two-sided or the
-///   receiver lies strictly on the side its normal points to
-///   ((p − c)·n > 0 for a point c of its plane).
+/// when it is known without looking the emitter up ([`facing_radiance`]):
+/// a sphere's or a sky cap's cone lies wholly on the emitter, and a
+/// polygon's or a disk's solid-angle sampler draws directions inside the
+/// shape seen from the receiver, so each one meets it.
 ///
 /// The lookup it saves is the ray–shape test of `radiance_toward`, about a
 /// fifth of a polygon's light sample (perf, `triangle` scene). Where the
@@ -355,59 +376,35 @@ fn light_sample_radiance(
     receiver: &Receiver,
     light: &EmitterLight,
 ) -> Option<f64> {
-    let faces = |two_sided: bool, on_plane: DVec3, normal: DVec3| {
-        two_sided || (receiver.point - on_plane).dot(normal) > 0.0
-    };
     match (emitter, light) {
-        (Emitter::Sphere(s), EmitterLight::Sphere(_)) => Some(s.radiance),
-        (Emitter::SkyCap(c), EmitterLight::Cap(..)) => Some(c.radiance),
-        (Emitter::Polygon(p), EmitterLight::Polygon(_))
-            if faces(p.two_sided, p.polygon.vertices()[0], p.polygon.normal()) =>
-        {
-            Some(p.radiance)
-        }
-        (Emitter::Disk(d), EmitterLight::Disk(_) | EmitterLight::DiskTable(_))
-            if faces(d.two_sided, d.disk.center(), d.disk.normal()) =>
-        {
-            Some(d.radiance)
+        (Emitter::Sphere(_), EmitterLight::Sphere(_))
+        | (Emitter::SkyCap(_), EmitterLight::Cap(..))
+        | (Emitter::Polygon(_), EmitterLight::Polygon(_))
+        | (Emitter::Disk(_), EmitterLight::Disk(_) | EmitterLight::DiskTable(_)) => {
+            facing_radiance(emitter, receiver)
         }
         _ => None,
     }
 }
 
 /// The radiance that every point drawn by `area` sees from `receiver`,
-/// when it is known without looking the emitter up: each point lies on the
-/// emitter (a sphere's only on the side that faces the receiver, the
-/// sampler drops the others), so the ray toward it meets the emitter there
-/// first, and its emitting side faces the receiver when the light is a
-/// sphere, two-sided, or has the receiver strictly on the side its normal
-/// points to ((p − c)·n > 0 for a point c of its plane). The f32 path has
-/// always taken area samples' radiance so.
+/// when it is known without a lookup ([`facing_radiance`]): each point
+/// lies on the emitter (a sphere's only on the side that faces the
+/// receiver, the sampler drops the others), so the ray toward it meets
+/// the emitter there first. The f32 path has always taken area samples'
+/// radiance so.
 ///
 /// The lookup it saves is the ray–shape test of `radiance_toward`, which
 /// for a polygon loops over its edges and kept the area loops scalar.
 /// Where the two differ the sampler is right, as for light samples
 /// ([`light_sample_radiance`]): a point drawn on the rim can give a
 /// direction that rounds to just outside the shape, and the lookup read 0
-/// for it. `None` for a one-sided light seen from its back or its own
-/// plane, and for emitters without area.
+/// for it. `None` where [`facing_radiance`] is, and for emitters without
+/// area.
 fn area_sample_radiance(emitter: &Emitter, receiver: &Receiver, area: &EmitterArea) -> Option<f64> {
-    let faces = |two_sided: bool, on_plane: DVec3, normal: DVec3| {
-        two_sided || (receiver.point - on_plane).dot(normal) > 0.0
-    };
-    match (emitter, area) {
-        (Emitter::Sphere(s), EmitterArea::Sphere(..)) => Some(s.radiance),
-        (Emitter::Polygon(p), EmitterArea::Polygon(..))
-            if faces(p.two_sided, p.polygon.vertices()[0], p.polygon.normal()) =>
-        {
-            Some(p.radiance)
-        }
-        (Emitter::Disk(d), EmitterArea::Disk(..))
-            if faces(d.two_sided, d.disk.center(), d.disk.normal()) =>
-        {
-            Some(d.radiance)
-        }
-        _ => None,
+    match area {
+        EmitterArea::None => None,
+        _ => facing_radiance(emitter, receiver),
     }
 }
 
