@@ -20,8 +20,14 @@
 /// `rand_pcg`'s multiplier of `Mcg128Xsl64`.
 const MULTIPLIER: u128 = 0x2360_ED05_1FC6_5DA4_4385_DF64_9FCC_F645;
 
-/// Independent states stepped side by side.
-pub const LANES: usize = 8;
+/// Independent states stepped side by side: 16, two 512-bit vectors per
+/// 64-bit half. Each step is a chain of dependent multiplies, shifts and
+/// adds, so one vector of 8 states waited on that chain's latency; two
+/// independent vectors fill it. Measured side by side (4096 outputs as
+/// coordinates, one thread): 0.78 → 0.48 ns/output with AVX-512, 1.39 →
+/// 1.24 with AVX2, 2.43 → 1.92 in the baseline set. The numbers do not
+/// depend on it (each lane is s₀·M^(first+1+j), stepped by M^LANES).
+pub const LANES: usize = 16;
 
 /// A `Pcg64Mcg` stream, addressed by output index (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
