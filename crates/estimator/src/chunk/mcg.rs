@@ -23,10 +23,12 @@ const MULTIPLIER: u128 = 0x2360_ED05_1FC6_5DA4_4385_DF64_9FCC_F645;
 /// Independent states stepped side by side: 16, two 512-bit vectors per
 /// 64-bit half. Each step is a chain of dependent multiplies, shifts and
 /// adds, so one vector of 8 states waited on that chain's latency; two
-/// independent vectors fill it. Measured side by side (4096 outputs as
-/// coordinates, one thread): 0.78 → 0.48 ns/output with AVX-512, 1.39 →
-/// 1.24 with AVX2, 2.43 → 1.92 in the baseline set. The numbers do not
-/// depend on it (each lane is s₀·M^(first+1+j), stepped by M^LANES).
+/// independent vectors fill it. Criterion medians of 4096 outputs as f64
+/// coordinates (bench `sequences`, rows `mcg stream`), 8 → 16 lanes,
+/// alternated: AVX-512 2.78–2.87 → 1.89–2.22 µs, baseline 12.4 → 8.9 µs;
+/// AVX2 within its noise (5.3–5.6 → 5.0–6.6 µs; an interleaved probe gave
+/// 1.39 → 1.24 ns/output). The numbers do not depend on it (each lane is
+/// s₀·M^(first+1+j), stepped by M^LANES).
 pub const LANES: usize = 16;
 
 /// A `Pcg64Mcg` stream, addressed by output index (module docs).
