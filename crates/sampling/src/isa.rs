@@ -21,6 +21,13 @@
 //! "FMA" in the name is the processor feature the set requires, as x86-64-v3
 //! does; the kernels do not use it for that reason.)
 //!
+//! What the set does not cover: calls into the C library's transcendental
+//! functions (`atan2`, `atan`, `hypot`, …) run whichever build of them the
+//! C library picked for the processor (glibc has FMA, AVX and SSE2 builds),
+//! and those can differ in the last bit. Values computed through them can
+//! therefore differ between machines, not between sets on one machine; the
+//! workspace's `libm_variants` test bounds that difference.
+//!
 //! The set a process uses is [`Isa::selected`]: the widest one available,
 //! or a narrower one named in the environment variable `LAMBERT_ISA`
 //! (`baseline`, `avx2` or `avx512`), for measuring one set against another.
