@@ -126,9 +126,10 @@ impl StudyConfig {
     /// 2^5 … 2^20 × 8 replicates. N starts at 2^5 because the randomized-QMC
     /// estimates need 2 samples in each of their 16 randomizations; 2^20 is
     /// the size for a study that finishes in under two minutes on
-    /// two cores (measured on a 2-core AVX-512 machine: 4,992 rows in 57 s;
-    /// on a 2-core AVX2 machine without AVX-512 the same rows' times add up
-    /// to about 2.3 minutes).
+    /// two cores (measured on a 2-core AVX-512 machine: 4,992 rows in 42 s;
+    /// on a 2-core AVX2 machine without AVX-512 the same rows' times, taken
+    /// before the estimator's kernels lost their scalar tails, added up to
+    /// about 2.3 minutes).
     pub fn builtin() -> Self {
         StudyConfig {
             name: "builtin".into(),
