@@ -97,7 +97,12 @@ impl PreparedEmitter {
         let out = &mut out[..n];
         if let Technique::Mis(h) = self.technique {
             if let Some(cone) = self.cone_mis(receiver) {
-                return cone_mis_batch(&cone, h, &block, out);
+                // One loop per heuristic, each with its choice made at
+                // compile time rather than tested in the loop.
+                return match h {
+                    Heuristic::Balance => cone_mis_batch(&cone, Heuristic::Balance, &block, out),
+                    Heuristic::Power => cone_mis_batch(&cone, Heuristic::Power, &block, out),
+                };
             }
         }
         match (&self.light, &self.emitter) {

@@ -156,6 +156,28 @@ fn cone_batch(
     )
 }
 
+/// MIS on a sphere or sky cap ([`ConeMisF32`]): both halves in the frames
+/// where they are cheapest, counted apart.
+#[inline(always)]
+fn cone_mis_batch(
+    cone: &ConeMisF32,
+    h: Heuristic,
+    radiance: f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    accumulate(
+        radiance,
+        block,
+        out,
+        #[inline(always)]
+        |u, v| {
+            let (cosine, light) = cone.parts(h, u, v);
+            [cosine, light]
+        },
+    )
+}
+
 /// The closure itself, so that `#[inline(always)]` may sit on it.
 #[inline(always)]
 fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
@@ -515,16 +537,16 @@ impl PreparedEmitterF32 {
             _ => None,
         };
         if let (Some(cone), true) = (cone, self.lit) {
-            return accumulate(
-                self.radiance,
-                block,
-                out,
-                #[inline(always)]
-                |u, v| {
-                    let (cosine, light) = cone.parts(h, u, v);
-                    [cosine, light]
-                },
-            );
+            // One loop per heuristic, its choice made at compile time
+            // rather than tested in the loop (as in the f64 kernels).
+            return match h {
+                Heuristic::Balance => {
+                    cone_mis_batch(&cone, Heuristic::Balance, self.radiance, block, out)
+                }
+                Heuristic::Power => {
+                    cone_mis_batch(&cone, Heuristic::Power, self.radiance, block, out)
+                }
+            };
         }
         match &self.light {
             Light::Sky => self.mis_loop(
