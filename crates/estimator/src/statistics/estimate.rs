@@ -113,7 +113,8 @@ fn split_mean(sum: &NeumaierSum, n: u64) -> (f64, f64) {
 /// together, so it is part of every estimate's bits.
 const SUM_LANES: usize = 16;
 
-/// The compensated sum of `f(x)` over the finite values of `values`, in
+/// The compensated sum of `f(x)` over the finite values of `values`, and
+/// optionally the count of non-zero values, in
 /// [`SUM_LANES`] lanes (value i in lane i mod 16) merged in lane order, as
 /// [`Estimate::from_values`] documents.
 ///
@@ -122,15 +123,26 @@ const SUM_LANES: usize = 16;
 /// leaves the lane's bits as they were (its running sum starts at +0 and
 /// can never become −0 by round-to-nearest additions, so s + 0 = s and the
 /// rounding error (s − s) + 0 = +0 adds nothing to the compensation).
-/// `ALL_FINITE` says the caller has counted no non-finite value, and drops
-/// that test and select (6 % of [`Estimate::from_values`]'s time); the
-/// bits are the same.
+/// `ALL_FINITE` drops that test and select (6 % of
+/// [`Estimate::from_values`]'s time): the bits are the same when every
+/// value is finite, and a non-finite value then makes the sum non-finite
+/// (see `from_values`). `COUNT` also counts the values x ≠ 0 (of `values`,
+/// not of f(x)), returned with the sum (0 without it): counting there, and
+/// not in a pass of its own, took `from_values` from 0.33 to 0.25 ns per
+/// value (AVX-512, 4096 values).
 #[inline(always)]
-fn lane_sums<const ALL_FINITE: bool>(values: &[f64], f: impl Fn(f64) -> f64) -> NeumaierSum {
+fn lane_sums<const ALL_FINITE: bool, const COUNT: bool>(
+    values: &[f64],
+    f: impl Fn(f64) -> f64,
+) -> (NeumaierSum, u64) {
     const LANES: usize = SUM_LANES;
     let mut s = [0.0f64; LANES];
     let mut c = [0.0f64; LANES];
-    let add = |s: &mut f64, c: &mut f64, x: f64| {
+    let mut nonzero = [0u64; LANES];
+    let add = |s: &mut f64, c: &mut f64, nz: &mut u64, x: f64| {
+        if COUNT {
+            *nz += u64::from(x != 0.0);
+        }
         let y = if ALL_FINITE || x.is_finite() {
             f(x)
         } else {
@@ -149,17 +161,17 @@ fn lane_sums<const ALL_FINITE: bool>(values: &[f64], f: impl Fn(f64) -> f64) -> 
     let mut blocks = values.chunks_exact(LANES);
     for block in blocks.by_ref() {
         for j in 0..LANES {
-            add(&mut s[j], &mut c[j], block[j]);
+            add(&mut s[j], &mut c[j], &mut nonzero[j], block[j]);
         }
     }
     for (j, &x) in blocks.remainder().iter().enumerate() {
-        add(&mut s[j], &mut c[j], x);
+        add(&mut s[j], &mut c[j], &mut nonzero[j], x);
     }
     let mut sum = NeumaierSum::from_parts(s[0], c[0]);
     for j in 1..LANES {
         sum.merge(&NeumaierSum::from_parts(s[j], c[j]));
     }
-    sum
+    (sum, nonzero.iter().sum())
 }
 
 impl Estimate {
@@ -209,21 +221,32 @@ impl Estimate {
         // SUM_LANES interleaved compensated sums (value i goes to lane i mod 16),
         // merged in a fixed order: the same accuracy as one, without one
         // long dependency chain.
-        let mut n = 0u64;
-        let mut nonzero = 0u64;
-        for &x in values {
-            n += u64::from(x.is_finite());
-            nonzero += u64::from(x.is_finite() && x != 0.0);
-        }
-        let non_finite = values.len() as u64 - n;
-        // Where every value is finite (the usual case), the sums skip the
-        // per-value test and select: the same bits, fewer instructions.
-        let all_finite = non_finite == 0;
-        let sum = if all_finite {
-            lane_sums::<true>(values, |x| x)
+        //
+        // The usual case, every value finite, takes one pass for the sum
+        // and the non-zero count. A NaN or ±∞ makes its lane's compensation
+        // NaN for good ((±∞ − ±∞) or NaN enters it, and NaN + c = NaN), and
+        // so the merged sum's: a finite sum proves every value finite, and
+        // is then what the careful pass below would give, to the bit.
+        let (sum, nonzero) = lane_sums::<true, true>(values, |x| x);
+        let (hi, lo) = sum.parts();
+        let (n, nonzero, non_finite, sum) = if hi.is_finite() && lo.is_finite() {
+            (values.len() as u64, nonzero, 0, sum)
         } else {
-            lane_sums::<false>(values, |x| x)
+            let mut n = 0u64;
+            let mut nonzero = 0u64;
+            for &x in values {
+                n += u64::from(x.is_finite());
+                nonzero += u64::from(x.is_finite() && x != 0.0);
+            }
+            let non_finite = values.len() as u64 - n;
+            let sum = if non_finite == 0 {
+                sum
+            } else {
+                lane_sums::<false, false>(values, |x| x).0
+            };
+            (n, nonzero, non_finite, sum)
         };
+        let all_finite = non_finite == 0;
         if n == 0 {
             return Estimate {
                 non_finite,
@@ -236,9 +259,9 @@ impl Estimate {
             d * d
         };
         let m2 = if all_finite {
-            lane_sums::<true>(values, deviation2)
+            lane_sums::<true, false>(values, deviation2).0
         } else {
-            lane_sums::<false>(values, deviation2)
+            lane_sums::<false, false>(values, deviation2).0
         };
         Estimate {
             n,
@@ -479,18 +502,109 @@ mod tests {
             .collect();
         let square = |x: f64| x * x;
         assert_eq!(
-            lane_sums::<true>(&values, |x| x),
-            lane_sums::<false>(&values, |x| x)
+            lane_sums::<true, true>(&values, |x| x),
+            lane_sums::<false, true>(&values, |x| x)
         );
         assert_eq!(
-            lane_sums::<true>(&values, square),
-            lane_sums::<false>(&values, square)
+            lane_sums::<true, false>(&values, square),
+            lane_sums::<false, false>(&values, square)
         );
         let mut with_inf = values.clone();
         with_inf[17] = f64::INFINITY;
         assert_ne!(
-            lane_sums::<true>(&with_inf, |x| x),
-            lane_sums::<false>(&with_inf, |x| x)
+            lane_sums::<true, false>(&with_inf, |x| x),
+            lane_sums::<false, false>(&with_inf, |x| x)
+        );
+    }
+
+    /// The statistics as `from_values` computed them before its one-pass
+    /// fast path: the counts first, then sums that skip non-finite values.
+    fn careful(values: &[f64]) -> Estimate {
+        let n = values.iter().filter(|x| x.is_finite()).count() as u64;
+        let nonzero = values
+            .iter()
+            .filter(|x| x.is_finite() && **x != 0.0)
+            .count() as u64;
+        let sum = lane_sums::<false, false>(values, |x| x).0;
+        if n == 0 {
+            return Estimate {
+                non_finite: values.len() as u64,
+                ..Estimate::new()
+            };
+        }
+        let (mean_hi, mean_lo) = split_mean(&sum, n);
+        let deviation2 = |x: f64| {
+            let d = (x - mean_hi) - mean_lo;
+            d * d
+        };
+        Estimate {
+            n,
+            non_finite: values.len() as u64 - n,
+            nonzero,
+            sum,
+            mean_hi,
+            mean_lo,
+            m2: lane_sums::<false, false>(values, deviation2).0,
+        }
+    }
+
+    /// Every field's bits (an overflowed estimate holds NaNs, which `==`
+    /// would call unequal to themselves).
+    fn bits(e: &Estimate) -> [u64; 9] {
+        let (s, c) = e.sum.parts();
+        let (m, mc) = e.m2.parts();
+        [e.n, e.non_finite, e.nonzero, s.to_bits(), c.to_bits()]
+            .into_iter()
+            .chain([e.mean_hi, e.mean_lo, m, mc].map(f64::to_bits))
+            .collect::<Vec<_>>()
+            .try_into()
+            .unwrap()
+    }
+
+    /// The one-pass fast path gives the careful path's bits: on finite
+    /// values with zeros, and with a NaN, ±∞ or a sum that overflows in any
+    /// lane and at the remainder, where it must fall back. Negative
+    /// control: the fast pass alone, without its finiteness check, would
+    /// count every value as a sample.
+    #[test]
+    fn one_pass_fast_path_gives_the_careful_bits() {
+        let values: Vec<f64> = (0..4099)
+            .map(|i| {
+                let x = ((i as f64) * 0.618_034).fract();
+                if x < 0.3 {
+                    0.0
+                } else {
+                    x * 3e-2
+                }
+            })
+            .collect();
+        assert_eq!(
+            bits(&Estimate::from_values(&values)),
+            bits(&careful(&values))
+        );
+        assert!(careful(&values).nonzero() < 4099 && careful(&values).nonzero() > 0);
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, f64::MAX] {
+            for at in [0usize, 5, 15, 16, 2000, 4097, 4098] {
+                let mut v = values.clone();
+                v[at] = bad;
+                if bad == f64::MAX {
+                    // A second f64::MAX in the same lane overflows its sum.
+                    v[(at + 16) % 4096] = f64::MAX;
+                }
+                let got = Estimate::from_values(&v);
+                assert_eq!(bits(&got), bits(&careful(&v)), "{bad} at {at}");
+                let (fast, _) = lane_sums::<true, true>(&v, |x| x);
+                assert!(!fast.sum().is_finite(), "{bad} at {at}: fast sum finite");
+            }
+        }
+        let mut nan = values.clone();
+        nan[3] = f64::NAN;
+        assert_eq!(Estimate::from_values(&nan).n(), 4098);
+        assert_ne!(Estimate::from_values(&nan).n(), nan.len() as u64);
+        let all_nan = [f64::NAN; 20];
+        assert_eq!(
+            bits(&Estimate::from_values(&all_nan)),
+            bits(&careful(&all_nan))
         );
     }
 
