@@ -51,11 +51,13 @@ impl SplitMixStream {
     #[inline(always)]
     pub fn fill_2d_f32(&self, first: u64, x: &mut [f32], y: &mut [f32]) {
         const SCALE: f32 = 1.0 / 16_777_216.0;
-        let base = self.seed.wrapping_add(first.wrapping_mul(GAMMA));
-        for (k, (xk, yk)) in x.iter_mut().zip(y.iter_mut()).enumerate() {
-            let bits = mix(base.wrapping_add((k as u64 + 1).wrapping_mul(GAMMA)));
-            *xk = (bits >> 40) as u32 as f32 * SCALE;
-            *yk = ((bits >> 8) as u32 & 0xff_ffff) as f32 * SCALE;
+        let mut state = self.seed.wrapping_add(first.wrapping_mul(GAMMA));
+        for (xk, yk) in x.iter_mut().zip(y.iter_mut()) {
+            state = state.wrapping_add(GAMMA);
+            let bits = mix(state);
+            let (hi, lo) = ((bits >> 32) as u32, bits as u32);
+            *xk = (hi >> 8) as f32 * SCALE;
+            *yk = (lo >> 8) as f32 * SCALE;
         }
     }
 }
