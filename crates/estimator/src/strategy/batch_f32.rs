@@ -247,31 +247,40 @@ impl PreparedEmitterF32 {
                 &block,
                 out,
             ),
-            Shape::Cap(frame, cone) => self.technique_batch(
-                #[inline(always)]
-                |w| cone.pdf(frame.to_local(w)) > 0.0,
-                &block,
-                out,
-            ),
-            Shape::Sphere(s) => self.technique_batch(
-                #[inline(always)]
-                |w| {
-                    s.hit_distance(&Ray::new(origin, w), f32::INFINITY)
-                        .is_some()
-                },
-                &block,
-                out,
-            ),
-            Shape::Disk(d) => self.technique_batch(
-                #[inline(always)]
-                |w| {
-                    lit && d
-                        .hit_distance(&Ray::new(origin, w), f32::INFINITY)
-                        .is_some()
-                },
-                &block,
-                out,
-            ),
+            Shape::Cap(frame, cone) => {
+                let (frame, cone) = (&{ *frame }, &{ *cone });
+                self.technique_batch(
+                    #[inline(always)]
+                    |w| cone.pdf(frame.to_local(w)) > 0.0,
+                    &block,
+                    out,
+                )
+            }
+            Shape::Sphere(s) => {
+                let s = &{ *s };
+                self.technique_batch(
+                    #[inline(always)]
+                    |w| {
+                        s.hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                            .is_some()
+                    },
+                    &block,
+                    out,
+                )
+            }
+            Shape::Disk(d) => {
+                let d = &{ *d };
+                self.technique_batch(
+                    #[inline(always)]
+                    |w| {
+                        lit && d
+                            .hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                            .is_some()
+                    },
+                    &block,
+                    out,
+                )
+            }
             Shape::Polygon(q) => self.technique_batch(
                 #[inline(always)]
                 |w| {
@@ -294,7 +303,10 @@ impl PreparedEmitterF32 {
         block: &Block<'_>,
         out: &mut [f64],
     ) -> PartHits {
-        let (frame, normal, radiance) = (&self.frame, self.normal, self.radiance);
+        // Copies, not references, as in the f64 kernels' `technique_batch`:
+        // loads through `&self` inside the hit test's branch became masked
+        // gathers on every iteration.
+        let (frame, normal, radiance) = (&{ self.frame }, self.normal, self.radiance);
         match self.technique {
             Technique::UniformHemisphere => single(
                 radiance,
