@@ -26,7 +26,7 @@
 //!   rather than divide by the density.
 
 use glam::{Vec2, Vec3};
-use lambert_geometry::f32::{Frame, Intersect, Ray};
+use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
     sample_uniform_sphere, LightSampler, PolygonSolidAngle, UniformCone,
@@ -281,16 +281,40 @@ impl PreparedEmitterF32 {
                     out,
                 )
             }
-            Shape::Polygon(q) => self.technique_batch(
-                #[inline(always)]
-                |w| {
-                    lit && q
-                        .hit_distance(&Ray::new(origin, w), f32::INFINITY)
-                        .is_some()
-                },
-                &block,
-                out,
-            ),
+            Shape::Polygon(q) => {
+                // A triangle's or a quadrilateral's ray test prepared for
+                // the receiver, as in the f64 kernels (`polygon_lookup`):
+                // the same answers, in a fixed edge loop that vectorises
+                // where the polygon's own test is a call per sample into a
+                // loop over its vertices (measured: 10x the f64 time for
+                // hemisphere sampling of a triangle, 33 against 3.1 ns).
+                if let Some(seen) = PolygonFromOrigin::<3>::new(q, origin) {
+                    return self.technique_batch(
+                        #[inline(always)]
+                        |w| lit && seen.hits(w),
+                        &block,
+                        out,
+                    );
+                }
+                if let Some(seen) = PolygonFromOrigin::<4>::new(q, origin) {
+                    return self.technique_batch(
+                        #[inline(always)]
+                        |w| lit && seen.hits(w),
+                        &block,
+                        out,
+                    );
+                }
+                self.technique_batch(
+                    #[inline(always)]
+                    |w| {
+                        lit && q
+                            .hit_distance(&Ray::new(origin, w), f32::INFINITY)
+                            .is_some()
+                    },
+                    &block,
+                    out,
+                )
+            }
         }
     }
 
