@@ -29,7 +29,7 @@ use glam::{Vec2, Vec3};
 use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
-    sample_uniform_sphere, LightSampler, PolygonSolidAngle, UniformCone,
+    sample_uniform_sphere, LightSampler, PolygonSolidAngle, TabulatedDiskSolidAngle, UniformCone,
 };
 use lambert_sampling::isa::Isa;
 
@@ -154,6 +154,62 @@ fn cone_batch(
         #[inline(always)]
         |u| omega * n_local.dot(cone.sample(u)).max(0.0),
     )
+}
+
+/// Samples whose disk directions [`disk_light_batch`] draws at a time
+/// (three arrays of f32 on the stack, 3 KB).
+const DISK_BATCH: usize = 256;
+
+/// Light sampling of a disk through its tabulated sampler, as the f64
+/// kernels do it (`disk_table_batch`): the directions of [`DISK_BATCH`]
+/// samples at a time come from
+/// [`TabulatedDiskSolidAngle::sample_directions`], whose branch-free passes
+/// vectorise where the one-sample `sample` (a table lookup and a quadrature
+/// of varying length) does not; the same directions to the bit, each of
+/// the density 1/Ω that `sample` gives. They pass through [`accumulate`]
+/// as a block whose first point holds x and y and whose second holds z.
+/// Measured on a close disk: 103 ns per f32 sample one at a time, 18 in
+/// batches, against 28–34 in f64.
+///
+/// MIS of a disk still draws one direction at a time (115 ns per f32
+/// sample): threading the batch through the shared MIS loop (a third
+/// coordinate per sample) kept every value and took the disk to 49 ns,
+/// but made the triangle's MIS loop 17 times slower (4.9 to 84 ns; the
+/// loop was no longer vectorised, for a reason not yet found), so it was
+/// left out.
+#[inline(always)]
+fn disk_light_batch(
+    disk: &TabulatedDiskSolidAngle,
+    normal: Vec3,
+    radiance: f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    let pdf = 1.0 / disk.solid_angle();
+    let mut directions = [[0.0f32; DISK_BATCH]; 3];
+    let mut hits = [0u64; 2];
+    for (k, out) in out.chunks_mut(DISK_BATCH).enumerate() {
+        let m = out.len();
+        let at = k * DISK_BATCH..k * DISK_BATCH + m;
+        let [dx, dy, dz] = &mut directions;
+        let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
+        disk.sample_directions(&block.ux[at.clone()], &block.uy[at], dx, dy, dz);
+        let drawn = Block {
+            ux: dx,
+            uy: dy,
+            vx: dz,
+            vy: dz,
+        };
+        let got = accumulate(
+            radiance,
+            &drawn,
+            out,
+            #[inline(always)]
+            |xy, z| [cos_over_pdf(normal, Vec3::new(xy.x, xy.y, z.x), pdf)],
+        );
+        hits[0] += got[0];
+    }
+    hits
 }
 
 /// MIS on a sphere or sky cap ([`ConeMisF32`]): both halves in the frames
@@ -429,16 +485,7 @@ impl PreparedEmitterF32 {
                     },
                 )
             }
-            Light::Disk(d) => single(
-                radiance,
-                block,
-                out,
-                #[inline(always)]
-                |u| {
-                    let s = d.sample(u);
-                    cos_over_pdf(normal, s.direction, s.pdf)
-                },
-            ),
+            Light::Disk(d) => disk_light_batch(d, normal, radiance, block, out),
             Light::None => [0, 0],
         }
     }
