@@ -13,7 +13,8 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::measurement::WallTime;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
 use glam::DVec3;
 use lambert_benches::config;
 use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind};
@@ -52,21 +53,35 @@ fn precision(c: &mut Criterion) {
             (Strategy::Light, SequenceKind::Stratified),
         ]);
     for (strategy, sequence) in cases {
-        for precision in Precision::ALL {
-            let cfg = EstimateConfig {
-                strategy,
-                sequence,
-                samples: SAMPLES,
-                seed: 1,
-                threads: 1,
-                precision,
-            };
-            g.bench_function(format!("sphere {strategy} {sequence} {precision}"), |b| {
-                b.iter(|| black_box(estimate(&scene, &cfg).unwrap().mean))
-            });
-        }
+        let label = format!("sphere {strategy} {sequence}");
+        both_precisions(&mut g, &label, &scene, strategy, sequence, SAMPLES);
     }
     g.finish();
+}
+
+/// One row per precision, `"{label} {precision}"`: a one-thread estimate
+/// of `samples` samples of `scene` (seed 1).
+fn both_precisions(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    label: &str,
+    scene: &Scene,
+    strategy: Strategy,
+    sequence: SequenceKind,
+    samples: u64,
+) {
+    for precision in Precision::ALL {
+        let cfg = EstimateConfig {
+            strategy,
+            sequence,
+            samples,
+            seed: 1,
+            threads: 1,
+            precision,
+        };
+        g.bench_function(format!("{label} {precision}"), |b| {
+            b.iter(|| black_box(estimate(scene, &cfg).unwrap().mean))
+        });
+    }
 }
 
 /// The shapes group (module docs): one scene per light shape, the receiver
@@ -117,19 +132,9 @@ fn shapes(c: &mut Criterion) {
             Strategy::Light,
             Strategy::Mis(Heuristic::Power),
         ] {
-            for precision in Precision::ALL {
-                let cfg = EstimateConfig {
-                    strategy,
-                    sequence: SequenceKind::Independent,
-                    samples: SHAPE_SAMPLES,
-                    seed: 1,
-                    threads: 1,
-                    precision,
-                };
-                g.bench_function(format!("{name} {strategy} {precision}"), |b| {
-                    b.iter(|| black_box(estimate(&scene, &cfg).unwrap().mean))
-                });
-            }
+            let label = format!("{name} {strategy}");
+            let independent = SequenceKind::Independent;
+            both_precisions(&mut g, &label, &scene, strategy, independent, SHAPE_SAMPLES);
         }
     }
     g.finish();
