@@ -36,8 +36,13 @@ macro_rules! disk_impl {
             // a wins: φ = (π/4)t, (cos φ, sin φ) = (c, s);
             // b wins: φ = π/2 − (π/4)t, (cos φ, sin φ) = (s, c).
             let (cos_phi, sin_phi) = if a_wins { (c, s) } else { (s, c) };
-            let sign = (1.0 as Real).copysign(den);
-            (den.abs(), sign * sin_phi, sign * cos_phi)
+            // The sign of den, as a flip rather than a product with ±1
+            // (the same value; flips leave the multipliers free).
+            if den.is_sign_negative() {
+                (den.abs(), -sin_phi, -cos_phi)
+            } else {
+                (den.abs(), sin_phi, cos_phi)
+            }
         }
 
         /// A point of the unit disk, uniform in area (density 1/π per unit
