@@ -86,13 +86,7 @@ impl McgStream {
     /// Fills the shorter length.
     #[inline(always)]
     pub fn fill_2d(&self, first: u64, x: &mut [f64], y: &mut [f64]) {
-        const SCALE: f64 = 1.0 / 4_294_967_296.0;
-        self.fill_with(first, x, y, |bits| {
-            (
-                f64::from((bits >> 32) as u32) * SCALE,
-                f64::from(bits as u32) * SCALE,
-            )
-        });
+        self.fill_with(first, x, y, unit_pair);
     }
 
     /// The f32 path's coordinates of outputs `first + k`: the top 24 bits
@@ -193,6 +187,23 @@ impl Lanes {
     }
 }
 
+/// The high and low 32-bit halves h of `bits` as h·2⁻³², exactly.
+///
+/// Without a conversion or a multiply: the double with exponent 0 and
+/// fraction bits h·2²⁰ is 1 + h·2⁻³² exactly (h fits the 52 fraction bits),
+/// and subtracting 1 is exact (the difference is representable). The
+/// multiplier pipes are what the kernels that read these numbers run short
+/// of; a shift, a mask and an or are not.
+#[inline(always)]
+fn unit_pair(bits: u64) -> (f64, f64) {
+    const ONE: u64 = 0x3ff0_0000_0000_0000;
+    const HIGH_HALF: u64 = 0xffff_ffff_0000_0000;
+    (
+        f64::from_bits(ONE | ((bits & HIGH_HALF) >> 12)) - 1.0,
+        f64::from_bits(ONE | ((bits << 32) >> 12)) - 1.0,
+    )
+}
+
 /// Outputs drawn between two conversions (a multiple of [`LANES`]).
 const SPAN: usize = 64;
 
@@ -200,6 +211,29 @@ const SPAN: usize = 64;
 mod tests {
     use super::*;
     use rand_core::{RngCore, SeedableRng};
+
+    /// The exponent trick gives h·2⁻³² to the bit (so +0 for h = 0) at
+    /// the halves' extremes and around every power of two; a negative
+    /// control shows the comparison sees an ulp.
+    #[test]
+    fn unit_pair_is_the_exact_scaled_half() {
+        let scaled = |h: u64| (h as f64 / 4_294_967_296.0).to_bits();
+        let mut halves = vec![0u64, 1, 2, 3, 0xffff_fffe, 0xffff_ffff];
+        for k in 1..32 {
+            halves.extend([(1u64 << k) - 1, 1 << k, (1 << k) + 1]);
+        }
+        for &hi in &halves {
+            for &lo in &halves {
+                let (x, y) = unit_pair(hi << 32 | lo);
+                assert_eq!(
+                    (x.to_bits(), y.to_bits()),
+                    (scaled(hi), scaled(lo)),
+                    "{hi:#x} {lo:#x}"
+                );
+            }
+        }
+        assert_ne!(unit_pair(5 << 32).0.to_bits(), scaled(5) + 1);
+    }
 
     #[test]
     fn same_numbers_as_rand_pcg_from_any_offset() {
