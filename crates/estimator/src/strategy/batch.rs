@@ -346,11 +346,17 @@ fn cone_mis_batch(cone: &ConeMis, h: Heuristic, block: &Block<'_>, out: &mut [f6
     // A local copy stays in registers (see `technique_batch`).
     let cone = *cone;
     let mut hits = [0u64; 2];
+    if !cone.is_drawn() {
+        // Both halves are 0 (`ConeMis::parts`); decided once, not per sample.
+        out.iter_mut().for_each(|o| *o += 0.0);
+        return hits;
+    }
     block.each(
         out,
         #[inline(always)]
         |_, u, v, o| {
-            let (cosine, light) = cone.parts(h, u, v);
+            let (cosine, light) =
+                cone.combine(cone.cosine_quotient(h, u), cone.light_quotient(h, v));
             hits[0] += u64::from(cosine != 0.0);
             hits[1] += u64::from(light != 0.0);
             *o += cosine + light;

@@ -239,13 +239,19 @@ fn cone_mis_batch(
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
+    if !cone.is_drawn() {
+        // Both halves are 0 (`ConeMisF32::parts`); decided once, not per
+        // sample.
+        return accumulate(radiance, block, out, |_, _| [0.0, 0.0]);
+    }
     accumulate(
         radiance,
         block,
         out,
         #[inline(always)]
         |u, v| {
-            let (cosine, light) = cone.parts(h, u, v);
+            let (cosine, light) =
+                cone.combine(cone.cosine_quotient(h, u), cone.light_quotient(h, v));
             [cosine, light]
         },
     )

@@ -28,6 +28,11 @@
 //! underflow or overflow where the direction sees the emitter, and a
 //! cosine-sampled direction that misses it has value 0 (1 stands in for a
 //! denominator of 0 there).
+//!
+//! The same commuting puts the scale where it costs nothing: the product
+//! (N/D)·scale is computed as (scale·N)/D, with scale·L and scale/π formed
+//! once per cone, so that no multiply per sample is spent on it (the f64
+//! kernel is bound by its multiplies).
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
@@ -41,8 +46,11 @@ macro_rules! cone_mis {
         /// samples (module docs).
         #[derive(Clone, Copy, Debug)]
         pub(super) struct $name {
-            /// The emitter's radiance L (W·m⁻²·sr⁻¹).
-            radiance: $real,
+            /// The emitter's radiance L (W·m⁻²·sr⁻¹) times the power of
+            /// two `scale` that brings max(1/Ω, 1/π) into [1, 2): the
+            /// values' final product with the power of two, moved onto a
+            /// factor every numerator has (module docs).
+            scaled_radiance: $real,
             /// The cone, about +z of its own frame.
             cone: lambert_sampling::$p::UniformCone,
             /// The cone's axis in the receiver's frame.
@@ -53,9 +61,9 @@ macro_rules! cone_mis {
             /// `UniformCone::pdf` widens its rim): |ω − a|² ≤ this is
             /// inside.
             rim: $real,
-            /// The power of two that brings max(1/Ω, 1/π) into [1, 2), by
-            /// which both densities are scaled (module docs).
-            scale: $real,
+            /// 1/π times `scale`: the cosine density per unit cos θ, scaled
+            /// (as are all densities here).
+            scaled_cosine_pdf: $real,
             /// The light density 1/Ω per steradian, times `scale`.
             light_pdf: $real,
             /// Whether 1/Ω is a positive finite density (a cone so small
@@ -78,12 +86,12 @@ macro_rules! cone_mis {
                 let light_pdf = 1.0 / cone.solid_angle();
                 let scale = $scale(light_pdf.max(1.0 / std::$real::consts::PI));
                 $name {
-                    radiance,
+                    scaled_radiance: radiance * scale,
+                    scaled_cosine_pdf: (1.0 / std::$real::consts::PI) * scale,
                     cone: *cone,
                     axis: receiver.to_local(cone_frame.z),
                     normal: cone_frame.to_local(receiver.z),
                     rim: 2.0 * cone.one_minus_cos_theta_max() * (1.0 + 8.0 * $real::EPSILON),
-                    scale,
                     light_pdf: light_pdf * scale,
                     drawn: light_pdf > 0.0 && light_pdf < $real::INFINITY,
                 }
@@ -95,23 +103,41 @@ macro_rules! cone_mis {
             /// w·f/p = N/D·scale with, for the power heuristic,
             /// N = f·a and D = a² + b² (balance: N = f, D = a + b), a the
             /// scaled density of the sample's own technique and b the
-            /// other's.
+            /// other's: [`combine`](Self::combine) of
+            /// [`cosine_quotient`](Self::cosine_quotient) and
+            /// [`light_quotient`](Self::light_quotient).
+            // The f32 kernels call the halves themselves (with the cone's
+            // density checked once per block); the tests call this one.
+            #[cfg_attr(not(test), allow(dead_code))]
             #[inline(always)]
             pub(super) fn parts(&self, h: Heuristic, u: $v2, v: $v2) -> ($real, $real) {
-                use lambert_sampling::$p::{pdf_cosine_hemisphere, sample_cosine_hemisphere};
-                let quotient = |f: $real, a: $real, b: $real| match h {
-                    Heuristic::Balance => (f, a + b),
-                    Heuristic::Power => (f * a, a * a + b * b),
-                };
+                if self.drawn {
+                    self.combine(self.cosine_quotient(h, u), self.light_quotient(h, v))
+                } else {
+                    (0.0, 0.0)
+                }
+            }
+
+            /// Whether the cone has a positive finite density 1/Ω; where it
+            /// has none, both halves are 0 ([`parts`](Self::parts)).
+            #[inline(always)]
+            pub(super) fn is_drawn(&self) -> bool {
+                self.drawn
+            }
+
+            /// The cosine-sampled half's (N, D) from `u` ([`parts`](Self::parts)).
+            #[inline(always)]
+            pub(super) fn cosine_quotient(&self, h: Heuristic, u: $v2) -> ($real, $real) {
+                use lambert_sampling::$p::sample_cosine_hemisphere;
                 let w = sample_cosine_hemisphere(u);
-                let p_cos = pdf_cosine_hemisphere(w) * self.scale;
+                let p_cos = w.z.max(0.0) * self.scaled_cosine_pdf;
                 let inside = (w - self.axis).length_squared() <= self.rim;
                 let (l_cos, p_light) = if inside {
-                    (self.radiance * w.z, self.light_pdf)
+                    (self.scaled_radiance * w.z, self.light_pdf)
                 } else {
                     (0.0, 0.0)
                 };
-                let (n_cos, d_cos) = quotient(l_cos, p_cos, p_light);
+                let (n_cos, d_cos) = Self::quotient(h, l_cos, p_cos, p_light);
                 // Inside the cone D ≥ b² ≥ 1/16. Outside, N = 0 and D = a²
                 // may be 0 or subnormal (a tiny cone's scale makes a tiny):
                 // below √(smallest normal), 1 stands in, so that the value
@@ -124,18 +150,40 @@ macro_rules! cone_mis {
                 } else {
                     1.0
                 };
+                (n_cos, d_cos)
+            }
+
+            /// The light-sampled half's (N, D) from `v` ([`parts`](Self::parts)).
+            #[inline(always)]
+            pub(super) fn light_quotient(&self, h: Heuristic, v: $v2) -> ($real, $real) {
                 let cos = self.normal.dot(self.cone.sample(v)).max(0.0);
-                let (n_light, d_light) = quotient(
-                    self.radiance * cos,
+                Self::quotient(
+                    h,
+                    self.scaled_radiance * cos,
                     self.light_pdf,
-                    cos * (1.0 / std::$real::consts::PI) * self.scale,
-                );
-                let (c, l) = $pair((n_cos, d_cos), (n_light, d_light), self.scale);
-                if self.drawn {
-                    (c, l)
-                } else {
-                    (0.0, 0.0)
+                    cos * self.scaled_cosine_pdf,
+                )
+            }
+
+            /// (N, D) of one half for integrand value `f`, own scaled
+            /// density `a` and the other's `b` ([`parts`](Self::parts)).
+            #[inline(always)]
+            fn quotient(h: Heuristic, f: $real, a: $real, b: $real) -> ($real, $real) {
+                match h {
+                    Heuristic::Balance => (f, a + b),
+                    Heuristic::Power => (f * a, a * a + b * b),
                 }
+            }
+
+            /// The two halves' values N/D·scale from their quotients, for
+            /// a cone that [`is_drawn`](Self::is_drawn) ([`parts`](Self::parts)).
+            #[inline(always)]
+            pub(super) fn combine(
+                &self,
+                cosine: ($real, $real),
+                light: ($real, $real),
+            ) -> ($real, $real) {
+                $pair(cosine, light)
             }
         }
     };
@@ -150,9 +198,9 @@ cone_mis!(
     DVec3,
     f64,
     super::scale_to_unit,
-    |(n1, d1): (f64, f64), (n2, d2): (f64, f64), s: f64| {
+    |(n1, d1): (f64, f64), (n2, d2): (f64, f64)| {
         let r = 1.0 / (d1 * d2);
-        (n1 * (d2 * r) * s, n2 * (d1 * r) * s)
+        (n1 * (d2 * r), n2 * (d1 * r))
     }
 );
 // f32: a division each (the values of `Heuristic::weighted_f32`).
@@ -163,7 +211,7 @@ cone_mis!(
     Vec3,
     f32,
     super::scale_to_unit_f32,
-    |(n1, d1): (f32, f32), (n2, d2): (f32, f32), s: f32| (n1 / d1 * s, n2 / d2 * s)
+    |(n1, d1): (f32, f32), (n2, d2): (f32, f32)| (n1 / d1, n2 / d2)
 );
 
 #[cfg(test)]
