@@ -351,6 +351,9 @@ mod tests {
         }
         let y = 0.3;
         let nudged = f64::from_bits(padded(y, &coefficients).to_bits() + 1);
-        assert_ne!(super::f64::estrin(y, &coefficients).to_bits(), nudged.to_bits());
+        assert_ne!(
+            super::f64::estrin(y, &coefficients).to_bits(),
+            nudged.to_bits()
+        );
     }
 }
