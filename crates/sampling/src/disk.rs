@@ -37,7 +37,7 @@ macro_rules! disk_impl {
             // b wins: φ = π/2 − (π/4)t, (cos φ, sin φ) = (s, c).
             let (cos_phi, sin_phi) = if a_wins { (c, s) } else { (s, c) };
             // The sign of den, as a flip rather than a product with ±1
-            // (the same value; flips leave the multipliers free).
+            // (the same value, without the multiplies).
             if den.is_sign_negative() {
                 (den.abs(), -sin_phi, -cos_phi)
             } else {

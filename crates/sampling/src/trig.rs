@@ -177,8 +177,8 @@ macro_rules! trig_impl {
             // would mispredict): odd q swaps (s, c) → (c, −s), q & 2 negates.
             let odd = (q_bits & 1) != 0;
             let (s1, c1) = if odd { (c, -s) } else { (s, c) };
-            // A sign flip, not a product with ±1 (the same value): flips
-            // are bitwise and leave the multipliers free.
+            // A sign flip, not a product with ±1 (the same value, without
+            // the multiplies).
             if (q_bits & 2) != 0 {
                 (-s1, -c1)
             } else {
