@@ -47,6 +47,7 @@ mod sobol_table;
 mod splitmix;
 pub mod stratified;
 mod stratified_batch;
+mod stratified_pow2;
 #[cfg(test)]
 mod value_stability;
 

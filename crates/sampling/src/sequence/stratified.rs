@@ -74,7 +74,9 @@
 //! **Batches**: [`SampleSequence::fill_2d`] computes a dimension pair for
 //! many consecutive samples at once (`stratified_batch.rs`): keys hashed
 //! once per batch, the first pair's cells added up per lane, the points in
-//! vector lanes; the values are the cursor's, to the bit.
+//! vector lanes (for a power-of-two `N`, every modulus a mask and every
+//! reduction a shift: `stratified_pow2.rs`); the values are the cursor's,
+//! to the bit.
 //!
 //! **Values before 2026-12**: the sequence used to permute every pair's
 //! cells by a keyed permutation and every column's and row's sub-strata by
@@ -86,8 +88,15 @@
 //!
 //! f32 output is the f64 value truncated to 24 bits, so a point lying within
 //! `2^-24` above a stratum boundary `k/N` may fall just below it in f32.
+//! On a power-of-two grid it is the exact value `(k + ξ)/N` truncated to
+//! 24 bits instead, computed in integers (`stratified_pow2.rs`): the same
+//! bits for `N ≤ 2²¹`; above, one `2⁻²⁴` step lower in the rare
+//! coordinate (about one in `2³⁰`) whose f64 rounding carried across a
+//! step; and for `N ≤ 2²⁴` never outside its stratum. Changed in 2026-12
+//! from the truncated f64 value for `N > 2²¹` only, because the integer
+//! form costs a third as much in vector lanes.
 
-use super::stratified_batch::{cell_of, fill_pass, stream_bits, Grid, PairKeys, BLOCK};
+use super::stratified_batch::{cell_of, fill_pass, stream_bits, Coordinate, Grid, PairKeys, BLOCK};
 use super::{assert_split_lengths, hash2, round_down_24, u64_to_f64, SampleSequence};
 use crate::SamplingError;
 use glam::{DVec2, Vec2};
@@ -180,17 +189,10 @@ fn near_square_grid(n: u32) -> (u32, u32) {
 
 impl Stratified {
     /// Request `request` of samples `first..first + x.len()`, pass by
-    /// pass, each coordinate passed through `store` and written to `x` and
-    /// `y`: the batch kernel of `stratified_batch.rs`.
+    /// pass, as f64 or f32 coordinates written to `x` and `y`: the batch
+    /// kernel of `stratified_batch.rs`.
     #[inline(always)]
-    fn fill_points<T>(
-        &self,
-        first: u64,
-        request: u64,
-        x: &mut [T],
-        y: &mut [T],
-        store: impl Fn(&Grid, f64) -> T + Copy,
-    ) {
+    fn fill_points<T: Coordinate>(&self, first: u64, request: u64, x: &mut [T], y: &mut [T]) {
         let n = u64::from(self.grid.n);
         let dim = 2 * request;
         let len = x.len();
@@ -207,7 +209,7 @@ impl Stratified {
             let room = room as usize;
             let keys = PairKeys::new(&self.grid, hash2(self.seed, pass), dim);
             let (x, y) = (&mut x[done..done + room], &mut y[done..done + room]);
-            fill_pass(&self.grid, &keys, dim, local, x, y, store);
+            fill_pass(&self.grid, &keys, dim, local, x, y);
             done += room;
         }
     }
@@ -219,13 +221,7 @@ impl Stratified {
         let (mut x, mut y) = ([0.0; BLOCK], [0.0; BLOCK]);
         for (b, out) in out.chunks_mut(BLOCK).enumerate() {
             let (x, y) = (&mut x[..out.len()], &mut y[..out.len()]);
-            self.fill_points(
-                first.wrapping_add((b * BLOCK) as u64),
-                request,
-                x,
-                y,
-                Grid::unit,
-            );
+            self.fill_points(first.wrapping_add((b * BLOCK) as u64), request, x, y);
             for (o, (&x, &y)) in out.iter_mut().zip(x.iter().zip(&*y)) {
                 *o = make(x, y);
             }
@@ -260,9 +256,16 @@ impl SampleSequence for Stratified {
         u
     }
 
+    /// The f64 point rounded down to 24 bits, or on a power-of-two grid
+    /// the exact point rounded down (module docs).
     fn next_2d_f32(&mut self) -> Vec2 {
-        let u = self.next_2d();
-        Vec2::new(round_down_24(u.x), round_down_24(u.y))
+        let keys = self.keys();
+        let (c, r) = self
+            .grid
+            .split(cell_of(&self.grid, &keys, self.dim, self.local));
+        let u = self.grid.point_f32(&keys, c, r, self.local);
+        self.dim += 2;
+        u
     }
 
     /// The batch kernel of `stratified_batch.rs`: the same values as the
@@ -278,7 +281,7 @@ impl SampleSequence for Stratified {
     #[inline(always)]
     fn fill_2d_split(&self, first: u64, request: u64, x: &mut [f64], y: &mut [f64]) {
         assert_split_lengths("fill_2d_split", x.len(), y.len());
-        self.fill_points(first, request, x, y, Grid::unit);
+        self.fill_points(first, request, x, y);
     }
 
     /// The batch kernel, rounding each coordinate down to 24 bits as it
@@ -286,7 +289,7 @@ impl SampleSequence for Stratified {
     #[inline(always)]
     fn fill_2d_split_f32(&self, first: u64, request: u64, x: &mut [f32], y: &mut [f32]) {
         assert_split_lengths("fill_2d_split_f32", x.len(), y.len());
-        self.fill_points(first, request, x, y, Grid::unit_f32);
+        self.fill_points(first, request, x, y);
     }
 
     fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {

@@ -30,12 +30,17 @@
 //! and `cell / nx` use a precomputed reciprocal ([`FastDiv`], Lemire, Kaser
 //! & Kurz 2019, "Faster remainder by direct computation"). Every value is
 //! the point-by-point value to the bit.
+//!
+//! When `N` is a power of two, [`fill_pass`] hands the pass to the kernel
+//! of `stratified_pow2.rs` instead: the same values, with masks and shifts
+//! in place of the tables, carries and reciprocals above.
 
+use super::stratified_pow2::{jittered_sum, PowerOfTwoGrid};
 use super::{hash2, mix64};
 use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
 
 /// `2⁻³²`.
-const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
+pub(super) const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
 
 /// Samples per block of the structure-of-arrays loops.
 pub(super) const BLOCK: usize = 256;
@@ -108,7 +113,7 @@ impl Domain {
     /// One step of the cycle walk: two rounds of invertible operations on
     /// `w`-bit integers (a bijection of `0..2^w`).
     #[inline(always)]
-    fn step(self, mut x: u32, keys: &PermuteKeys) -> u32 {
+    pub(super) fn step(self, mut x: u32, keys: &PermuteKeys) -> u32 {
         for [xor, mul, add, mul2] in keys.0 {
             // (x ⊕ k) & mask = x ⊕ (k & mask) for x < 2^w, and masking
             // commutes with the multiplications modulo 2^32.
@@ -319,7 +324,7 @@ pub(super) fn rotate(x: u32, s: u32, m: u32) -> u32 {
 /// multiples modulo `n` are spread as evenly as any (the three-distance
 /// theorem; Knuth, TAOCP vol. 3, §6.4, on Fibonacci hashing), so every
 /// prefix of a pass visits cells spread over the whole grid.
-fn golden_unit(n: u32) -> u32 {
+pub(super) fn golden_unit(n: u32) -> u32 {
     if n <= 2 {
         return n - 1; // 0 for n = 1, 1 for n = 2
     }
@@ -431,6 +436,9 @@ pub(super) struct Grid {
     /// and `dr·g_y mod ny`, as four arrays (not tuples) so that a block
     /// reads them with vector loads, not gathers.
     lane_steps: std::sync::Arc<[[u32; BLOCK]; 4]>,
+    /// The grid's masks and shifts when `N`, `nx` and `ny` are powers of
+    /// two: then the batch kernel is `stratified_pow2.rs`'s.
+    power_of_two: Option<PowerOfTwoGrid>,
 }
 
 impl Grid {
@@ -461,7 +469,22 @@ impl Grid {
             row_spread,
             column_spread,
             lane_steps,
+            power_of_two: PowerOfTwoGrid::new(n, nx, ny),
         }
+    }
+
+    /// The power-of-two form of the grid, if it has one.
+    #[cfg(test)]
+    pub(super) fn power_of_two(&self) -> Option<PowerOfTwoGrid> {
+        self.power_of_two
+    }
+
+    /// The grid without its power-of-two form, so that the general kernel
+    /// runs on it (the reference the power-of-two kernel is tested against).
+    #[cfg(test)]
+    pub(super) fn without_power_of_two(mut self) -> Self {
+        self.power_of_two = None;
+        self
     }
 
     /// `(cell mod nx, cell / nx)`: the column and row of a cell.
@@ -504,23 +527,41 @@ impl Grid {
     /// `r·nx + (c·g_x + t_r) mod nx`, jittered.
     #[inline(always)]
     pub(super) fn point(&self, keys: &PairKeys, c: u32, r: u32, i: u32) -> glam::DVec2 {
-        let spread = [self.column_spread.get(c), self.row_spread.get(r)];
-        let [x, y] = self.spread_sums(keys, [c, r], spread, i, reduce_u32);
-        glam::DVec2::new(self.unit(x), self.unit(y))
+        let [x, y] = self.point_parts(keys, c, r, i);
+        glam::DVec2::new(f64::from_parts(self, x), f64::from_parts(self, y))
     }
 
-    /// The stratum-plus-jitter sums `k + ξ` of [`Grid::point`]'s two
-    /// coordinates, given the spread column and row, `c·g_x mod nx` and
-    /// `r·g_y mod ny`.
+    /// [`Grid::point`] as f32 coordinates ([`Coordinate`] for f32).
+    #[inline]
+    pub(super) fn point_f32(&self, keys: &PairKeys, c: u32, r: u32, i: u32) -> glam::Vec2 {
+        let [x, y] = self.point_parts(keys, c, r, i);
+        let coordinate = |parts| match self.power_of_two {
+            Some(power_of_two) => power_of_two.unit_f32(parts),
+            None => f32::from_parts(self, parts),
+        };
+        glam::Vec2::new(coordinate(x), coordinate(y))
+    }
+
+    /// The strata and jitter bits `(k, h)` of [`Grid::point`]'s two
+    /// coordinates.
     #[inline(always)]
-    fn spread_sums(
+    pub(super) fn point_parts(&self, keys: &PairKeys, c: u32, r: u32, i: u32) -> [(u32, u32); 2] {
+        let spread = [self.column_spread.get(c), self.row_spread.get(r)];
+        self.spread_parts(keys, [c, r], spread, i, reduce_u32)
+    }
+
+    /// The strata `k` and jitter bits `h` (the coordinate is
+    /// `(k + h·2⁻³²)/N`) of [`Grid::point`]'s two coordinates, given the
+    /// spread column and row, `c·g_x mod nx` and `r·g_y mod ny`.
+    #[inline(always)]
+    fn spread_parts(
         &self,
         keys: &PairKeys,
         [c, r]: [u32; 2],
         [column_spread, row_spread]: [u32; 2],
         i: u32,
         reduce: impl Fn(u32, u32) -> u32,
-    ) -> [f64; 2] {
+    ) -> [(u32, u32); 2] {
         let (nx, ny) = (self.nx, self.ny);
         let s = reduce(hash_u32(keys.sigma, c), ny);
         let t = reduce(hash_u32(keys.tau, r), nx);
@@ -529,10 +570,7 @@ impl Grid {
         // 32 hashed bits per axis, the two halves of the jitter key: a
         // resolution of 2⁻³²/N, finer than the 2⁻³² of a Sobol point.
         let (high, low) = (hash_u32(keys.jitter, i), hash_u32(keys.jitter >> 32, i));
-        [
-            f64::from(kx) + f64::from(high) * TWO_POW_M32,
-            f64::from(ky) + f64::from(low) * TWO_POW_M32,
-        ]
+        [(kx, high), (ky, low)]
     }
 }
 
@@ -588,21 +626,63 @@ pub(super) fn cell_of(grid: &Grid, keys: &PairKeys, dim: u64, i: u32) -> u32 {
     }
 }
 
+/// A coordinate the batch kernel stores, from its stratum `k` and jitter
+/// bits `h`: f64, `(k + h·2⁻³²)·N⁻¹` ([`Grid::unit`]); or f32, that value
+/// rounded down to 24 bits ([`Grid::unit_f32`]), except on power-of-two
+/// grids, whose f32 coordinate is the exact one rounded down
+/// (`stratified_pow2.rs`: the same for `N ≤ 2²¹`).
+pub(super) trait Coordinate: Sized {
+    /// The coordinate on a grid that is not a power of two.
+    fn from_parts(grid: &Grid, parts: (u32, u32)) -> Self;
+
+    /// The coordinate on a power-of-two grid.
+    fn from_power_of_two(grid: &Grid, power_of_two: PowerOfTwoGrid, parts: (u32, u32)) -> Self;
+}
+
+impl Coordinate for f64 {
+    #[inline(always)]
+    fn from_parts(grid: &Grid, (k, h): (u32, u32)) -> f64 {
+        grid.unit(jittered_sum(k, h))
+    }
+
+    #[inline(always)]
+    fn from_power_of_two(grid: &Grid, _: PowerOfTwoGrid, parts: (u32, u32)) -> f64 {
+        f64::from_parts(grid, parts)
+    }
+}
+
+impl Coordinate for f32 {
+    #[inline(always)]
+    fn from_parts(grid: &Grid, (k, h): (u32, u32)) -> f32 {
+        grid.unit_f32(jittered_sum(k, h))
+    }
+
+    #[inline(always)]
+    fn from_power_of_two(_: &Grid, power_of_two: PowerOfTwoGrid, parts: (u32, u32)) -> f32 {
+        power_of_two.unit_f32(parts)
+    }
+}
+
 /// The 2-D points of positions `first … first + len − 1` of one pass (all
-/// `< N`) in dimensions `(dim, dim + 1)`, each coordinate made by
-/// `store(grid, k + ξ)` ([`Grid::unit`] for f64, [`Grid::unit_f32`] for
-/// f32) and written to `x[k]`, `y[k]` for `k < len = x.len()`. Inlined into
-/// the caller's instruction set.
+/// `< N`) in dimensions `(dim, dim + 1)`, each coordinate made from its
+/// stratum and jitter bits by [`Coordinate`] and written to `x[k]`, `y[k]`
+/// for `k < len = x.len()`; power-of-two grids take the kernel of
+/// `stratified_pow2.rs`. Inlined into the caller's instruction set.
 #[inline(always)]
-pub(super) fn fill_pass<T>(
+pub(super) fn fill_pass<T: Coordinate>(
     grid: &Grid,
     keys: &PairKeys,
     dim: u64,
     first: u32,
     x: &mut [T],
     y: &mut [T],
-    store: impl Fn(&Grid, f64) -> T,
 ) {
+    if let Some(power_of_two) = grid.power_of_two {
+        power_of_two.fill_pass(keys, dim, first, x, y, |parts| {
+            T::from_power_of_two(grid, power_of_two, parts)
+        });
+        return;
+    }
     let len = x.len();
     debug_assert_eq!(len, y.len());
     let (n, nx, ny) = (grid.n, grid.nx, grid.ny);
@@ -657,19 +737,9 @@ pub(super) fn fill_pass<T>(
         // The same shifts either way (`reduce_u32_narrow`); the narrow form
         // vectorises better.
         if nx < 1 << 16 && ny < 1 << 16 {
-            block_points(
-                grid,
-                keys,
-                cells,
-                spreads,
-                base,
-                x,
-                y,
-                &store,
-                reduce_u32_narrow,
-            );
+            block_points(grid, keys, cells, spreads, base, x, y, reduce_u32_narrow);
         } else {
-            block_points(grid, keys, cells, spreads, base, x, y, &store, reduce_u32);
+            block_points(grid, keys, cells, spreads, base, x, y, reduce_u32);
         }
     }
 }
@@ -678,7 +748,7 @@ pub(super) fn fill_pass<T>(
 /// with the shifts reduced by `reduce` (one instantiation per form).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn block_points<T>(
+fn block_points<T: Coordinate>(
     grid: &Grid,
     keys: &PairKeys,
     [c, r]: [&[u32]; 2],
@@ -686,14 +756,13 @@ fn block_points<T>(
     base: u32,
     x: &mut [T],
     y: &mut [T],
-    store: &impl Fn(&Grid, f64) -> T,
     reduce: impl Fn(u32, u32) -> u32 + Copy,
 ) {
     for k in 0..x.len() {
         let cell = [c[k], r[k]];
         let spread = [spread_c[k], spread_r[k]];
-        let [sx, sy] = grid.spread_sums(keys, cell, spread, base + k as u32, reduce);
-        (x[k], y[k]) = (store(grid, sx), store(grid, sy));
+        let [px, py] = grid.spread_parts(keys, cell, spread, base + k as u32, reduce);
+        (x[k], y[k]) = (T::from_parts(grid, px), T::from_parts(grid, py));
     }
 }
 
