@@ -4,14 +4,19 @@
 //! f32 and never 1.
 //! - **Independent samples** come from the chunk's own SplitMix64 stream
 //!   ([`SplitMixStream`], seeded with the chunk's seed), whose outputs are
-//!   computed many lanes at a time where the f64 path's `Pcg64Mcg` stream
-//!   is a scalar chain: the generator is part of the per-sample cost the
+//!   computed many lanes at a time with one 64-bit finaliser each, where
+//!   the f64 path's `Pcg64Mcg` stream costs a 128-bit multiply per output
+//!   ([`super::mcg`]): the generator is part of the per-sample cost the
 //!   f32 path exists to cut. Emitter by emitter, output `offset + i` is
 //!   sample i's point (MIS's second point `n` outputs later), the layout
 //!   of the f64 chunk.
-//! - **Randomized-QMC sequences** give the f64 chunk's points rounded down
-//!   to 24 bits, ⌊2²⁴u⌋/2²⁴ ([`round_down_24`]), so a point set keeps its
-//!   strata down to cells of 2⁻²⁴.
+//! - **Randomized-QMC sequences** give their f32 points
+//!   ([`SampleSequence::fill_2d_split_f32`]): the f64 chunk's points
+//!   rounded down to 24 bits, ⌊2²⁴u⌋/2²⁴
+//!   ([`lambert_sampling::sequence::round_down_24`]), so a point set keeps
+//!   its strata down to cells of 2⁻²⁴ (stratified points of a power-of-two
+//!   count are the exact points rounded down, the same up to 2²¹ per
+//!   replicate: `lambert_sampling::sequence::Stratified`).
 //!
 //! An emitter that runs in f64 ([`crate::strategy::F32Fallback`]) gets the
 //! f64 chunk's coordinates (the `Pcg64Mcg` stream, or the sequence's
@@ -26,7 +31,7 @@ use std::cell::RefCell;
 
 use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
-use lambert_sampling::sequence::{round_down_24, SampleSequence};
+use lambert_sampling::sequence::SampleSequence;
 
 use super::{ChunkResult, McgStream, SplitMixStream, BLOCK};
 use crate::statistics::Estimate;
@@ -197,11 +202,9 @@ pub fn independent_chunk_f32(
     })
 }
 
-/// [`super::sequence_chunk`] in f32 (module docs): the sequence's points
-/// for samples `range`, each f32 emitter's rounded down to 24 bits. When
-/// every emitter runs in f32 the points are filled in f32 directly
-/// ([`SampleSequence::fill_2d_split_f32`], the same values), half the
-/// memory and no rounding pass; otherwise in f64 and rounded per block.
+/// [`super::sequence_chunk`] in f32 (module docs): the sequence's f32
+/// points for samples `range` ([`SampleSequence::fill_2d_split_f32`]), and
+/// its f64 points as well when some emitter runs in f64.
 pub fn sequence_chunk_f32<S: SampleSequence>(
     prepared: &[PreparedEmitter],
     f32s: &[Option<PreparedEmitterF32>],
@@ -226,36 +229,30 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
         let [mut qx, mut qy] = std::mem::take(&mut s.points_f32);
         // Every element is written by the fills below: no zeroing per chunk.
         let len = n * dims;
-        if all_f32 {
-            qx.resize(len, 0.0);
-            qy.resize(len, 0.0);
-        } else {
-            px.resize(len, 0.0);
-            py.resize(len, 0.0);
-        }
+        qx.resize(len, 0.0);
+        qy.resize(len, 0.0);
+        let wide = if all_f32 { 0 } else { len };
+        px.resize(wide, 0.0);
+        py.resize(wide, 0.0);
         let result = isa.run(
             #[inline(always)]
             || {
-                if all_f32 {
-                    let requests = qx.chunks_exact_mut(n).zip(qy.chunks_exact_mut(n));
-                    for (request, (x, y)) in requests.enumerate() {
-                        sequence.fill_2d_split_f32(range.start, request as u64, x, y);
-                    }
-                } else {
-                    let requests = px.chunks_exact_mut(n).zip(py.chunks_exact_mut(n));
-                    for (request, (x, y)) in requests.enumerate() {
-                        sequence.fill_2d_split(range.start, request as u64, x, y);
-                    }
+                let requests = qx.chunks_exact_mut(n).zip(qy.chunks_exact_mut(n));
+                for (request, (x, y)) in requests.enumerate() {
+                    sequence.fill_2d_split_f32(range.start, request as u64, x, y);
+                }
+                let requests = px.chunks_exact_mut(n).zip(py.chunks_exact_mut(n));
+                for (request, (x, y)) in requests.enumerate() {
+                    sequence.fill_2d_split(range.start, request as u64, x, y);
                 }
                 let mut hits = vec![[0u64; 2]; prepared.len()];
                 let mut start = 0;
                 while start < n {
                     let m = BLOCK.min(n - start);
                     let coords = |k: usize| SequenceBlock {
-                        points: if all_f32 {
-                            Points::F32(&qx, &qy)
-                        } else {
-                            Points::F64(&px, &py)
+                        points: Points {
+                            f64s: [&px, &py],
+                            f32s: [&qx, &qy],
                         },
                         first: firsts[k],
                         start,
@@ -278,12 +275,12 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
     })
 }
 
-/// A chunk's sequence points, request after request: x and y, in f64 or
-/// already rounded to f32.
+/// A chunk's sequence points, request after request: x and y in f32, and
+/// in f64 when some emitter runs in f64 (empty otherwise).
 #[derive(Clone, Copy)]
-enum Points<'a> {
-    F64(&'a [f64], &'a [f64]),
-    F32(&'a [f32], &'a [f32]),
+struct Points<'a> {
+    f64s: [&'a [f64]; 2],
+    f32s: [&'a [f32]; 2],
 }
 
 /// One emitter's block of a chunk's sequence points: request r is
@@ -307,26 +304,14 @@ impl Coordinates for SequenceBlock<'_> {
     #[inline(always)]
     fn f64s<'a>(&'a self, request: usize, x: &'a mut [f64], _y: &'a mut [f64]) -> [&'a [f64]; 2] {
         let (from, len) = (self.from(request), x.len());
-        match self.points {
-            Points::F64(px, py) => [&px[from..from + len], &py[from..from + len]],
-            // Filled in f32 only when no emitter runs in f64.
-            Points::F32(..) => unreachable!("f64 coordinates asked of f32 points"),
-        }
+        // Filled whenever an emitter runs in f64, the only ones asking.
+        let [px, py] = self.points.f64s;
+        [&px[from..from + len], &py[from..from + len]]
     }
     #[inline(always)]
-    fn f32s<'a>(&'a self, request: usize, x: &'a mut [f32], y: &'a mut [f32]) -> [&'a [f32]; 2] {
+    fn f32s<'a>(&'a self, request: usize, x: &'a mut [f32], _y: &'a mut [f32]) -> [&'a [f32]; 2] {
         let (from, len) = (self.from(request), x.len());
-        match self.points {
-            Points::F64(px, py) => {
-                for (xk, &p) in x.iter_mut().zip(&px[from..from + len]) {
-                    *xk = round_down_24(p);
-                }
-                for (yk, &p) in y.iter_mut().zip(&py[from..from + len]) {
-                    *yk = round_down_24(p);
-                }
-                [x, y]
-            }
-            Points::F32(qx, qy) => [&qx[from..from + len], &qy[from..from + len]],
-        }
+        let [qx, qy] = self.points.f32s;
+        [&qx[from..from + len], &qy[from..from + len]]
     }
 }
