@@ -1103,11 +1103,18 @@ mod tests {
     /// sequences, 2^5…2^18 samples × 8 replicates): only the `projected`
     /// rows of rectangle-grazing (means by ≤ 4.1e-16 relative, standard
     /// errors by ≤ 5.8e-16) and sphere-straddling (no mean; standard
-    /// errors by ≤ 2e-16) moved.)
+    /// errors by ≤ 2e-16) moved. And when MIS on spheres and sky caps
+    /// (`ConeMis`) took a division per half instead of one shared by both,
+    /// so that vectors of cosine samples that cannot see the cone skip
+    /// their warp; the Sobol digest was 0xb592_8f3a_cb33_6e67, the
+    /// stratified one did not move. Compared row by row with the reference
+    /// study (4,992 rows): only f64 `mis` and `mis-balance` rows of the
+    /// sphere, sky-cap and several-lights scenes moved, means by at most
+    /// 2.6e-16 relative and standard errors by at most 3.5e-12.)
     #[test]
     fn randomized_qmc_estimates_are_pinned() {
         let pinned = [
-            (SequenceKind::Sobol, 0xb592_8f3a_cb33_6e67_u64),
+            (SequenceKind::Sobol, 0xd2de_2b2a_f6a2_c536_u64),
             (SequenceKind::Stratified, 0x1980_9c4e_ba56_40f1),
         ];
         for (sequence, want) in pinned {

@@ -29,6 +29,7 @@ use lambert_sampling::f64::{
 use lambert_sampling::isa::Isa;
 
 use super::cone_mis::ConeMis;
+use super::cone_window::CosineWindow;
 use super::emitter_light::{
     disk_table_direction, sample_cap, sample_disk, sample_disk_table, sample_polygon,
     sample_rectangle, sample_single_triangle, sample_sky, sample_sphere,
@@ -96,12 +97,16 @@ impl PreparedEmitter {
         };
         let out = &mut out[..n];
         if let Technique::Mis(h) = self.technique {
-            if let Some(cone) = self.cone_mis(receiver) {
+            if let Some((cone, window)) = self.cone_mis_window(receiver) {
                 // One loop per heuristic, each with its choice made at
                 // compile time rather than tested in the loop.
                 return match h {
-                    Heuristic::Balance => cone_mis_batch(&cone, Heuristic::Balance, &block, out),
-                    Heuristic::Power => cone_mis_batch(&cone, Heuristic::Power, &block, out),
+                    Heuristic::Balance => {
+                        cone_mis_batch(&cone, &window, Heuristic::Balance, &block, out)
+                    }
+                    Heuristic::Power => {
+                        cone_mis_batch(&cone, &window, Heuristic::Power, &block, out)
+                    }
                 };
             }
         }
@@ -311,6 +316,49 @@ impl Block<'_> {
     }
 }
 
+impl Block<'_> {
+    /// Calls `group(ux, uy, vx, vy, out)` on every whole group of
+    /// [`MIS_GROUP`] samples in order (arrays of fixed length, so that the
+    /// compiler sees one vector), and returns the index after the last
+    /// whole group (the caller handles the rest).
+    #[inline(always)]
+    fn each_group(
+        &self,
+        out: &mut [f64],
+        mut group: impl FnMut(
+            &[f64; MIS_GROUP],
+            &[f64; MIS_GROUP],
+            &[f64; MIS_GROUP],
+            &[f64; MIS_GROUP],
+            &mut [f64; MIS_GROUP],
+        ),
+    ) -> usize {
+        let n = out.len();
+        let whole = n / MIS_GROUP * MIS_GROUP;
+        let (ux, uy) = (&self.ux[..whole], &self.uy[..whole]);
+        let (vx, vy) = (&self.vx[..whole], &self.vy[..whole]);
+        let groups = ux.as_chunks::<MIS_GROUP>().0.iter().zip(uy.as_chunks().0);
+        let groups = groups.zip(vx.as_chunks().0.iter().zip(vy.as_chunks().0));
+        let outs = out[..whole].as_chunks_mut::<MIS_GROUP>().0;
+        for (((ux, uy), (vx, vy)), out) in groups.zip(outs) {
+            group(ux, uy, vx, vy, out);
+        }
+        whole
+    }
+
+    /// Sample `i`'s first point.
+    #[inline(always)]
+    fn u(&self, i: usize) -> DVec2 {
+        DVec2::new(self.ux[i], self.uy[i])
+    }
+
+    /// Sample `i`'s second point.
+    #[inline(always)]
+    fn v(&self, i: usize) -> DVec2 {
+        DVec2::new(self.vx[i], self.vy[i])
+    }
+}
+
 /// Light sampling of a sphere through its cone: F = L Ω max(n_local·ω, 0)
 /// with ω the cone's direction in its own frame and n_local the normal
 /// rotated into it once.
@@ -340,30 +388,73 @@ fn sphere_cone_batch(
 }
 
 /// MIS on a sphere or sky cap ([`ConeMis`]): both halves in the frames
-/// where they are cheapest, counted apart.
+/// where they are cheapest, counted apart. Samples go in groups of
+/// [`MIS_GROUP`]: where no cosine-sampled direction of a group may see the
+/// cone ([`CosineWindow::may_see`]), their values are exactly 0 and only the
+/// light half is computed (the values do not depend on the grouping).
 #[inline(always)]
-fn cone_mis_batch(cone: &ConeMis, h: Heuristic, block: &Block<'_>, out: &mut [f64]) -> PartHits {
-    // A local copy stays in registers (see `technique_batch`).
-    let cone = *cone;
+fn cone_mis_batch(
+    cone: &ConeMis,
+    window: &CosineWindow,
+    h: Heuristic,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    // Local copies stay in registers (see `technique_batch`).
+    let (cone, window) = (*cone, *window);
     let mut hits = [0u64; 2];
     if !cone.is_drawn() {
         // Both halves are 0 (`ConeMis::parts`); decided once, not per sample.
         out.iter_mut().for_each(|o| *o += 0.0);
         return hits;
     }
-    block.each(
+    // Hits counted per lane and added up at the end: a sum across the
+    // lanes in every group cost as much as the light half's arithmetic.
+    let mut lane_hits = [[0u64; MIS_GROUP]; 2];
+    let whole = block.each_group(
         out,
         #[inline(always)]
-        |_, u, v, o| {
-            let (cosine, light) =
-                cone.combine(cone.cosine_quotient(h, u), cone.light_quotient(h, v));
-            hits[0] += u64::from(cosine != 0.0);
-            hits[1] += u64::from(light != 0.0);
-            *o += cosine + light;
+        |ux, uy, vx, vy, out| {
+            // A loop, not `fold`: the fold was compiled apart, out of the
+            // kernel's instruction set.
+            let mut may_see = false;
+            for k in 0..MIS_GROUP {
+                may_see |= window.may_see(DVec2::new(ux[k], uy[k]));
+            }
+            // One branch per group, around whole loops: a select per lane
+            // would compute the cosine halves everywhere.
+            if may_see {
+                for k in 0..MIS_GROUP {
+                    let light = cone.light_value(h, DVec2::new(vx[k], vy[k]));
+                    let cosine = cone.cosine_value(h, DVec2::new(ux[k], uy[k]));
+                    lane_hits[0][k] += u64::from(cosine != 0.0);
+                    lane_hits[1][k] += u64::from(light != 0.0);
+                    out[k] += cosine + light;
+                }
+            } else {
+                for k in 0..MIS_GROUP {
+                    let light = cone.light_value(h, DVec2::new(vx[k], vy[k]));
+                    lane_hits[1][k] += u64::from(light != 0.0);
+                    // The cosine half's exact 0, added as above.
+                    out[k] += 0.0 + light;
+                }
+            }
         },
     );
+    hits = lane_hits.map(|lanes| lanes.iter().sum());
+    for (i, o) in out.iter_mut().enumerate().skip(whole) {
+        let (u, v) = (block.u(i), block.v(i));
+        let (cosine, light) = (cone.cosine_value(h, u), cone.light_value(h, v));
+        hits[0] += u64::from(cosine != 0.0);
+        hits[1] += u64::from(light != 0.0);
+        *o += cosine + light;
+    }
     hits
 }
+
+/// Samples per group of [`cone_mis_batch`]'s test: one AVX-512 vector of
+/// f64 lanes, two of AVX2's.
+const MIS_GROUP: usize = 8;
 
 /// `f` itself: a closure given here can carry `#[inline(always)]` (an
 /// attribute Rust accepts on a closure in argument position only), so that

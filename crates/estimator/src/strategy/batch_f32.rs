@@ -250,8 +250,7 @@ fn cone_mis_batch(
         out,
         #[inline(always)]
         |u, v| {
-            let (cosine, light) =
-                cone.combine(cone.cosine_quotient(h, u), cone.light_quotient(h, v));
+            let (cosine, light) = (cone.cosine_value(h, u), cone.light_value(h, v));
             [cosine, light]
         },
     )

@@ -53,6 +53,7 @@
 mod batch;
 mod batch_f32;
 mod cone_mis;
+mod cone_window;
 mod control_variate;
 mod emitter_area;
 mod emitter_light;

@@ -12,10 +12,12 @@ use lambert_sampling::f64::{
 use lambert_sampling::sequence::SampleSequence;
 
 use super::cone_mis::ConeMis;
+use super::cone_window::CosineWindow;
 use super::{
     ControlVariate, EmitterArea, EmitterLight, EmitterProjected, PartBound, Strategy, Technique,
     TechniqueFallback,
 };
+use lambert_geometry::f64::Frame;
 
 /// One emitter prepared for estimation at one receiver: its technique, its
 /// samplers, and the bounds of the one or two parts of its one-sample
@@ -42,6 +44,10 @@ pub struct PreparedEmitter {
     /// must look the emitter up.
     pub(super) area_radiance: Option<f64>,
     parts: [PartBound; 2],
+    /// [`cone_mis`](Self::cone_mis) and its [`CosineWindow`] at the
+    /// receiver this emitter was prepared for, with that receiver's frame:
+    /// built once, since the window costs inverse sines and tangents.
+    cone_mis_at: Option<(Frame, ConeMis, CosineWindow)>,
 }
 
 /// How many samples of a batch had a non-zero value in each part of an
@@ -99,7 +105,7 @@ impl PreparedEmitter {
         };
         let light_radiance = light_sample_radiance(emitter, receiver, &light);
         let area_radiance = area_sample_radiance(emitter, receiver, &area);
-        PreparedEmitter {
+        let mut prepared = PreparedEmitter {
             emitter: emitter.clone(),
             technique,
             fallback,
@@ -110,7 +116,13 @@ impl PreparedEmitter {
             light_radiance,
             area_radiance,
             parts: [first.unwrap_or(none), second.unwrap_or(none)],
+            cone_mis_at: None,
+        };
+        if let Technique::Mis(_) = prepared.technique {
+            let cone = prepared.build_cone_mis(receiver);
+            prepared.cone_mis_at = cone.map(|cone| (receiver.frame, cone, cone.window()));
         }
+        prepared
     }
 
     /// The bounds of the parts of this emitter's one-sample estimate: one
@@ -240,6 +252,26 @@ impl PreparedEmitter {
     /// `None` for other light samplers.
     #[inline(always)]
     pub(super) fn cone_mis(&self, receiver: &Receiver) -> Option<ConeMis> {
+        match self.cone_mis_at {
+            Some((frame, cone, _)) if frame == receiver.frame => Some(cone),
+            _ => self.build_cone_mis(receiver),
+        }
+    }
+
+    /// [`cone_mis`](Self::cone_mis) with its [`CosineWindow`], for the
+    /// batch kernel: the ones built with this emitter when `receiver` is
+    /// the one it was prepared for.
+    pub(super) fn cone_mis_window(&self, receiver: &Receiver) -> Option<(ConeMis, CosineWindow)> {
+        match self.cone_mis_at {
+            Some((frame, cone, window)) if frame == receiver.frame => Some((cone, window)),
+            _ => self
+                .build_cone_mis(receiver)
+                .map(|cone| (cone, cone.window())),
+        }
+    }
+
+    /// [`cone_mis`](Self::cone_mis), built.
+    fn build_cone_mis(&self, receiver: &Receiver) -> Option<ConeMis> {
         let l = self.uniform_radiance();
         match &self.light {
             EmitterLight::Sphere(s) => Some(ConeMis::new(l, s.frame(), s.cone(), &receiver.frame)),
