@@ -164,6 +164,17 @@ impl Stratified {
         (self.grid.nx, self.grid.ny)
     }
 
+    /// The current position's point in the current dimension pair, made
+    /// by `point(grid, keys, column, row, position)`, and the cursor moved
+    /// to the next pair.
+    fn next_point<T>(&mut self, point: impl Fn(&Grid, &PairKeys, u32, u32, u32) -> T) -> T {
+        let keys = self.keys();
+        let cell = cell_of(&self.grid, &keys, self.dim, self.local);
+        let (c, r) = self.grid.split(cell);
+        self.dim += 2;
+        point(&self.grid, &keys, c, r, self.local)
+    }
+
     /// The keys of the current pass and dimension.
     #[inline]
     fn keys(&self) -> PairKeys {
@@ -247,25 +258,13 @@ impl SampleSequence for Stratified {
     }
 
     fn next_2d(&mut self) -> DVec2 {
-        let keys = self.keys();
-        let (c, r) = self
-            .grid
-            .split(cell_of(&self.grid, &keys, self.dim, self.local));
-        let u = self.grid.point(&keys, c, r, self.local);
-        self.dim += 2;
-        u
+        self.next_point(Grid::point)
     }
 
     /// The f64 point rounded down to 24 bits, or on a power-of-two grid
     /// the exact point rounded down (module docs).
     fn next_2d_f32(&mut self) -> Vec2 {
-        let keys = self.keys();
-        let (c, r) = self
-            .grid
-            .split(cell_of(&self.grid, &keys, self.dim, self.local));
-        let u = self.grid.point_f32(&keys, c, r, self.local);
-        self.dim += 2;
-        u
+        self.next_point(Grid::point_f32)
     }
 
     /// The batch kernel of `stratified_batch.rs`: the same values as the
