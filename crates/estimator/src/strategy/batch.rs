@@ -408,8 +408,9 @@ fn cone_mis_batch(
         out.iter_mut().for_each(|o| *o += 0.0);
         return hits;
     }
-    // Hits counted per lane and added up at the end: a sum across the
-    // lanes in every group cost as much as the light half's arithmetic.
+    // Hits counted per lane and added up at the end: counted into one
+    // total, every group ended in a sum across its lanes (a horizontal
+    // reduction the profile showed among the kernel's hottest lines).
     let mut lane_hits = [[0u64; MIS_GROUP]; 2];
     let whole = block.each_group(
         out,

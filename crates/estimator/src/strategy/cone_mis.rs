@@ -23,7 +23,7 @@
 //! kernel skips the cosine half's warp for a whole vector of samples that
 //! [`CosineWindow`] shows cannot see the cone (when the emitter is small,
 //! most of them). (The f32 kernel does not: the same skip measured no
-//! faster there, 1.01× in paired runs, its warp being cheaper.)
+//! faster there, 1.01× in paired runs.)
 //!
 //! **Values before 2026-12:** the f64 halves shared one division,
 //! r = 1/(D₁D₂), N₁/D₁ = N₁·D₂r, N₂/D₂ = N₂·D₁r
