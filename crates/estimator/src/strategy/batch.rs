@@ -637,30 +637,45 @@ fn light_batch(
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
-    let known_radiance = light_radiance.is_some();
-    let uniform = light_radiance.unwrap_or(0.0);
-    single(
-        block,
-        out,
-        #[inline(always)]
-        |i, u| {
-            // Branch-free, as in `mis_batch`.
-            let (s, drawn) = match light_sample(i, u) {
-                Some(s) => (s, true),
-                None => (NO_LIGHT_DIRECTION, false),
-            };
-            let v = if known_radiance {
-                uniform * s.direction.dot(normal).max(0.0) / s.pdf
-            } else {
-                radiance_cos(s.direction) / s.pdf
-            };
-            if drawn {
-                v
-            } else {
-                0.0
-            }
-        },
-    )
+    // One loop per case, decided once: with the test inside, the loop did
+    // not vectorise for AVX2 (measured on the uniform sky).
+    match light_radiance {
+        Some(uniform) => single(
+            block,
+            out,
+            #[inline(always)]
+            |i, u| {
+                // Branch-free, as in `mis_batch`.
+                let (s, drawn) = match light_sample(i, u) {
+                    Some(s) => (s, true),
+                    None => (NO_LIGHT_DIRECTION, false),
+                };
+                let v = uniform * s.direction.dot(normal).max(0.0) / s.pdf;
+                if drawn {
+                    v
+                } else {
+                    0.0
+                }
+            },
+        ),
+        None => single(
+            block,
+            out,
+            #[inline(always)]
+            |i, u| {
+                let (s, drawn) = match light_sample(i, u) {
+                    Some(s) => (s, true),
+                    None => (NO_LIGHT_DIRECTION, false),
+                };
+                let v = radiance_cos(s.direction) / s.pdf;
+                if drawn {
+                    v
+                } else {
+                    0.0
+                }
+            },
+        ),
+    }
 }
 
 /// `out[i] += f(i, u_i)` over the block, counting the non-zero values.
