@@ -311,6 +311,26 @@ macro_rules! area_light_impl {
             pub fn polygon(&self) -> &ConvexPolygon {
                 &self.polygon
             }
+
+            /// This sampler seen from `reference` (with the unit normal
+            /// `normal`) as a fan of exactly `N` triangles, whose samples
+            /// are [`LightSampler::sample`]'s without a branch per sample
+            /// (for loops over blocks); `None` unless the fan has `N`
+            /// triangles.
+            #[inline]
+            pub fn fan<const N: usize>(
+                &self,
+                reference: V3,
+                normal: V3,
+            ) -> Option<crate::polygon_area_fan::$p::PolygonAreaFan<N>> {
+                let visible = !all_below(reference, normal, self.polygon.vertices());
+                crate::polygon_area_fan::$p::PolygonAreaFan::new(
+                    &self.triangles,
+                    &self.cumulative,
+                    reference,
+                    visible,
+                )
+            }
         }
 
         impl LightSampler for PolygonAreaSampler {

@@ -38,6 +38,7 @@ mod horizon_clip;
 pub mod isa;
 mod light_sample;
 mod light_sampler;
+mod polygon_area_fan;
 mod polygon_light;
 mod projected_cap;
 mod projected_polygon;
@@ -83,6 +84,7 @@ macro_rules! public_api {
         };
         pub use crate::light_sample::$p::{pdf_area_to_solid_angle, LightSample, PointSample};
         pub use crate::light_sampler::$p::{seen_from, seen_from_or_zero, LightSampler};
+        pub use crate::polygon_area_fan::$p::PolygonAreaFan;
         pub use crate::polygon_light::$p::{
             PolygonLightSampler, PolygonSolidAngle, SingleTriangle,
         };

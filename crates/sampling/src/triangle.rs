@@ -78,7 +78,7 @@ macro_rules! triangle_impl {
 
             /// Barycentrics (b₀, b₁, b₂) of a uniform point:
             /// b₀ = 1 − √u₀, b₁ = u₁√u₀, b₂ = 1 − b₀ − b₁.
-            #[inline]
+            #[inline(always)]
             pub fn sample_barycentrics(u: V2) -> V3 {
                 let s = u.x.sqrt();
                 let b0 = 1.0 - s;
@@ -87,7 +87,7 @@ macro_rules! triangle_impl {
             }
 
             /// A point uniform on the triangle, density 1/A per m².
-            #[inline]
+            #[inline(always)]
             pub fn sample(&self, u: V2) -> PointSample {
                 let b = Self::sample_barycentrics(u);
                 PointSample {

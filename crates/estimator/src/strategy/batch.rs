@@ -23,8 +23,8 @@ use lambert_light::emitter::{Emitter, PolygonLight};
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
-    sample_uniform_hemisphere, LightSampler, PolygonSolidAngle, SphereSolidAngle,
-    TabulatedDiskSolidAngle,
+    sample_uniform_hemisphere, LightSample, LightSampler, PolygonAreaSampler, PolygonSolidAngle,
+    SphereSolidAngle, TabulatedDiskSolidAngle,
 };
 use lambert_sampling::isa::Isa;
 
@@ -786,11 +786,14 @@ fn technique_batch(
                     #[inline(always)]
                     |_, u| through(a.sample(r.point, r.normal, u)),
                 ),
-                EmitterArea::Polygon(a, r) => single(
+                EmitterArea::Polygon(a, r) => polygon_area_batch(
+                    a,
+                    r.point,
+                    r.normal,
+                    #[inline(always)]
+                    |s| through(Some(s)),
                     block,
                     out,
-                    #[inline(always)]
-                    |_, u| through(a.sample(r.point, r.normal, u)),
                 ),
                 EmitterArea::None => [0, 0],
             }
@@ -852,18 +855,80 @@ fn area_known_radiance_batch(
                 |_, u| value(a.sample_or_zero(p, u)),
             )
         }
-        EmitterArea::Polygon(a, r) => single(
-            block,
-            out,
-            #[inline(always)]
-            |_, u| match a.sample(r.point, r.normal, u) {
-                Some(s) => value(s),
-                None => 0.0,
-            },
-        ),
+        EmitterArea::Polygon(a, r) => polygon_area_batch(a, r.point, r.normal, value, block, out),
         EmitterArea::None => [0, 0],
     }
 }
+
+/// Area sampling of a polygon over a block: `out[i] += value(s)` for each
+/// light sample `s` the sampler gives (0 where it gives none). Through a
+/// [`PolygonAreaFan`](lambert_sampling::f64::PolygonAreaFan) when the fan has 1 to [`MAX_FAN`] triangles (every
+/// polygon of up to six vertices), whose loop vectorises; the sampler's
+/// own `sample` otherwise, a call per sample. The same values either way.
+#[inline(always)]
+fn polygon_area_batch(
+    sampler: &PolygonAreaSampler,
+    point: DVec3,
+    normal: DVec3,
+    value: impl Fn(LightSample) -> f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    /// The loop through the fan of `N` triangles, if the polygon's has `N`.
+    #[inline(always)]
+    fn through_fan<const N: usize>(
+        sampler: &PolygonAreaSampler,
+        (point, normal): (DVec3, DVec3),
+        value: &impl Fn(LightSample) -> f64,
+        block: &Block<'_>,
+        out: &mut [f64],
+    ) -> Option<PartHits> {
+        let fan = sampler.fan::<N>(point, normal)?;
+        Some(single(
+            block,
+            out,
+            #[inline(always)]
+            |_, u| {
+                let s = fan.sample_or_zero(u);
+                // `sample` gives a sample exactly where its density is
+                // positive; the select drops the others' unspecified fields.
+                if s.pdf > 0.0 {
+                    value(s)
+                } else {
+                    0.0
+                }
+            },
+        ))
+    }
+    // Plain branches, not `Option::or_else`: a closure not inlined would
+    // take its loop out of the kernel's instruction set.
+    let at = (point, normal);
+    if let Some(hits) = through_fan::<1>(sampler, at, &value, block, out) {
+        return hits;
+    }
+    if let Some(hits) = through_fan::<2>(sampler, at, &value, block, out) {
+        return hits;
+    }
+    if let Some(hits) = through_fan::<3>(sampler, at, &value, block, out) {
+        return hits;
+    }
+    if let Some(hits) = through_fan::<MAX_FAN>(sampler, at, &value, block, out) {
+        return hits;
+    }
+    single(
+        block,
+        out,
+        #[inline(always)]
+        |_, u| match sampler.sample(point, normal, u) {
+            Some(s) => value(s),
+            None => 0.0,
+        },
+    )
+}
+
+/// The most triangles of a polygon fan [`polygon_area_batch`] has a
+/// vectorised loop for.
+const MAX_FAN: usize = 4;
 
 /// MIS: the weighted cosine-sampled value from `u` plus the weighted
 /// light-sampled value from `v` (Veach & Guibas 1995), counted apart.

@@ -29,7 +29,8 @@ use glam::{Vec2, Vec3};
 use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
-    sample_uniform_sphere, LightSampler, PolygonSolidAngle, TabulatedDiskSolidAngle, UniformCone,
+    sample_uniform_sphere, LightSample, LightSampler, PolygonAreaSampler, PolygonSolidAngle,
+    TabulatedDiskSolidAngle, UniformCone,
 };
 use lambert_sampling::isa::Isa;
 
@@ -132,6 +133,70 @@ fn cos_over_pdf(normal: Vec3, direction: Vec3, pdf: f32) -> f32 {
         0.0
     }
 }
+
+/// Area sampling of a polygon seen from the origin, whose receiver has the
+/// unit normal `normal`: cos θ/p of each sample, as `through` scores the
+/// sampler's `sample`. Through a [`PolygonAreaFan`](lambert_sampling::f32::PolygonAreaFan)
+/// when the fan has 1 to [`MAX_FAN`] triangles (every polygon of up to six
+/// vertices), whose loop vectorises (a sample of density 0, where `sample`
+/// gives none, scores 0 in [`cos_over_pdf`]); the sampler's `sample`
+/// otherwise, a call per sample. The same values either way (the f64
+/// kernel's `polygon_area_batch`).
+#[inline(always)]
+fn polygon_area_batch(
+    sampler: &PolygonAreaSampler,
+    normal: Vec3,
+    radiance: f64,
+    through: &impl Fn(Option<LightSample>) -> f32,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    /// The loop through the fan of `N` triangles, if the polygon's has `N`.
+    #[inline(always)]
+    fn through_fan<const N: usize>(
+        sampler: &PolygonAreaSampler,
+        (normal, radiance): (Vec3, f64),
+        block: &Block<'_>,
+        out: &mut [f64],
+    ) -> Option<PartHits> {
+        let fan = sampler.fan::<N>(Vec3::ZERO, normal)?;
+        Some(single(
+            radiance,
+            block,
+            out,
+            #[inline(always)]
+            |u| {
+                let s = fan.sample_or_zero(u);
+                cos_over_pdf(normal, s.direction, s.pdf)
+            },
+        ))
+    }
+    // Plain branches, as in the f64 kernel.
+    let at = (normal, radiance);
+    if let Some(hits) = through_fan::<1>(sampler, at, block, out) {
+        return hits;
+    }
+    if let Some(hits) = through_fan::<2>(sampler, at, block, out) {
+        return hits;
+    }
+    if let Some(hits) = through_fan::<3>(sampler, at, block, out) {
+        return hits;
+    }
+    if let Some(hits) = through_fan::<MAX_FAN>(sampler, at, block, out) {
+        return hits;
+    }
+    single(
+        radiance,
+        block,
+        out,
+        #[inline(always)]
+        |u| through(sampler.sample(Vec3::ZERO, normal, u)),
+    )
+}
+
+/// The most triangles of a polygon fan [`polygon_area_batch`] has a
+/// vectorised loop for.
+const MAX_FAN: usize = 4;
 
 /// Solid-angle sampling of a cone (a sphere's or a sky cap's) in its own
 /// frame: g = Ω max(n_local·ω_local, 0), n_local the receiver's normal
@@ -550,13 +615,7 @@ impl PreparedEmitterF32 {
                     cos_over_pdf(normal, s.direction, s.pdf)
                 },
             ),
-            Area::Polygon(a) => single(
-                radiance,
-                block,
-                out,
-                #[inline(always)]
-                |u| through(a.sample(origin, normal, u)),
-            ),
+            Area::Polygon(a) => polygon_area_batch(a, normal, radiance, &through, block, out),
             Area::None => [0, 0],
         }
     }
