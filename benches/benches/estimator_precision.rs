@@ -130,6 +130,7 @@ fn shapes(c: &mut Criterion) {
             Strategy::UniformHemisphere,
             Strategy::CosineHemisphere,
             Strategy::Light,
+            Strategy::Area,
             Strategy::Mis(Heuristic::Power),
         ] {
             let label = format!("{name} {strategy}");
