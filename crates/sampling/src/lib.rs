@@ -44,6 +44,7 @@ mod projected_cap;
 mod projected_polygon;
 mod projected_sphere;
 mod projected_table;
+mod projected_whole;
 mod segment;
 pub mod sequence;
 mod soa;
@@ -92,6 +93,7 @@ macro_rules! public_api {
         pub use crate::projected_polygon::$p::{ProjectedPolygon, ProjectedPolygonSampler};
         pub use crate::projected_sphere::$p::{ProjectedSphere, ProjectedSphereSampler};
         pub use crate::projected_table::$p::TabulatedProjectedPolygon;
+        pub use crate::projected_whole::$p::{WholeProjectedCap, WholeProjectedSphere};
         pub use crate::sphere::$p::{
             invert_uniform_sphere, pdf_uniform_sphere, sample_uniform_sphere,
             sample_uniform_sphere_batch, sample_uniform_sphere_soa,

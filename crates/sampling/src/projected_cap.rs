@@ -348,6 +348,14 @@ macro_rules! projected_cap_impl {
                 )
             }
 
+            /// Whether the cap lies wholly above the horizon, so that
+            /// [`ProjectedCap::sample`] samples the whole ellipse
+            /// (closed form, no solve, no branch on u).
+            #[inline]
+            pub fn is_whole(&self) -> bool {
+                self.region == Region::Ellipse
+            }
+
             /// A direction with density cos θ/Ω⊥ on the visible cap, and
             /// that density. Every u ∈ [0, 1]² gives a finite unit vector
             /// with z > 0 for which [`ProjectedCap::pdf`] returns the same
@@ -366,8 +374,8 @@ macro_rules! projected_cap_impl {
             }
 
             /// The whole ellipse, by the concentric map.
-            #[inline]
-            fn sample_ellipse(&self, u: V2) -> V3 {
+            #[inline(always)]
+            pub(crate) fn sample_ellipse(&self, u: V2) -> V3 {
                 let (r, s, c) = concentric_polar(u);
                 let r = r.min(ONE_MINUS_EPSILON);
                 let (eta, zeta) = (r * c, r * s);

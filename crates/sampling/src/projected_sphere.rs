@@ -3,6 +3,7 @@
 
 macro_rules! projected_sphere_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
+        use crate::direction_sample::$p::DirectionSample;
         use crate::error::SamplingError;
         use crate::light_sample::$p::LightSample;
         use crate::light_sampler::$p::{shading_normal, LightSampler};
@@ -117,16 +118,7 @@ macro_rules! projected_sphere_impl {
             /// the near side of the sphere and its distance.
             #[inline]
             pub fn sample(&self, u: V2) -> LightSample {
-                let local = self.cap.sample(u).direction;
-                let mut w = self.frame.from_local(local);
-                let mut cos_theta = self.frame.z.dot(w);
-                if !(cos_theta > 0.0) {
-                    // A local cos θ of a few ε turned ≤ 0 by the frame's
-                    // rounding: lift it to ε (a move of ~ε rad, inside the
-                    // rim band).
-                    w = (w + self.frame.z * (Real::EPSILON - cos_theta)).normalize();
-                    cos_theta = self.frame.z.dot(w);
-                }
+                let (w, cos_theta) = self.world_direction(self.cap.sample(u).direction);
                 let axis = self.cone.frame().z;
                 // Angle α from the axis: 1 − cos α = |w − a|²/2.
                 let one_minus_cos = (0.5 * (w - axis).length_squared())
@@ -142,8 +134,42 @@ macro_rules! projected_sphere_impl {
                 }
             }
 
+            /// [`ProjectedSphere::sample`]'s direction and density alone,
+            /// to the bit, without the point on the sphere and its
+            /// distance (for estimators, which need neither).
             #[inline]
-            fn pdf_of(&self, cos_theta: Real) -> Real {
+            pub fn sample_direction(&self, u: V2) -> DirectionSample {
+                let (w, cos_theta) = self.world_direction(self.cap.sample(u).direction);
+                DirectionSample {
+                    direction: w,
+                    pdf: self.pdf_of(cos_theta),
+                }
+            }
+
+            /// The world direction of the cap's local direction `local` and
+            /// its cos θ = n·ω.
+            #[inline(always)]
+            fn world_direction(&self, local: V3) -> (V3, Real) {
+                let w = self.frame.from_local(local);
+                let cos_theta = self.frame.z.dot(w);
+                if cos_theta > 0.0 {
+                    (w, cos_theta)
+                } else {
+                    self.lifted(w, cos_theta)
+                }
+            }
+
+            /// A direction `w` whose cos θ (a local cos θ of a few ε) the
+            /// frame's rounding turned ≤ 0, lifted to cos θ ≈ ε (a move of
+            /// ~ε rad, inside the rim band), and its new cos θ.
+            #[inline(always)]
+            pub(crate) fn lifted(&self, w: V3, cos_theta: Real) -> (V3, Real) {
+                let w = (w + self.frame.z * (Real::EPSILON - cos_theta)).normalize();
+                (w, self.frame.z.dot(w))
+            }
+
+            #[inline(always)]
+            pub(crate) fn pdf_of(&self, cos_theta: Real) -> Real {
                 if cos_theta > 0.0 {
                     cos_theta / self.cap.projected_solid_angle()
                 } else {

@@ -60,8 +60,9 @@ pub struct EstimateOptions {
     /// f64 | f32: the precision of the per-sample arithmetic (directions,
     /// warps, densities, cos θ/p); sums are f64 either way. f32 runs twice
     /// as many samples per vector instruction (measured on a sphere light:
-    /// 0.45–0.75× the time of f64 for most strategies and sequences, 1.6×
-    /// for `projected`; README); an
+    /// 0.45–0.75× the time of f64 for most strategies and sequences;
+    /// `projected` 0.57× there, and 0.75–0.9× on polygons and on caps
+    /// across the horizon, measured on an AVX2 host; README); an
     /// emitter whose f32 error bound
     /// exceeds 1.2e-4 of its irradiance (small or far emitters under
     /// hit-testing strategies, lights grazing the horizon, lengths beyond

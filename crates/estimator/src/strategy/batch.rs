@@ -35,7 +35,8 @@ use super::emitter_light::{
     sample_rectangle, sample_single_triangle, sample_sky, sample_sphere,
 };
 use super::{
-    EmitterArea, EmitterLight, Heuristic, LightDirection, PartHits, PreparedEmitter, Technique,
+    EmitterArea, EmitterLight, EmitterProjected, Heuristic, LightDirection, PartHits,
+    PreparedEmitter, Technique,
 };
 
 impl PreparedEmitter {
@@ -108,6 +109,11 @@ impl PreparedEmitter {
                         cone_mis_batch(&cone, &window, Heuristic::Power, &block, out)
                     }
                 };
+            }
+        }
+        if self.technique == Technique::Projected {
+            if let Some(hits) = self.projected_whole_batch(receiver, &block, out) {
+                return hits;
             }
         }
         match (&self.light, &self.emitter) {
@@ -602,6 +608,66 @@ fn disk_table_batch(
     Some(hits)
 }
 
+impl PreparedEmitter {
+    /// Projected sampling of a sphere or sky cap wholly above the horizon,
+    /// in one branch-free loop (`WholeProjectedSphere`,
+    /// `WholeProjectedCap`): [`EmitterProjected::sample`] and
+    /// `projected_value`'s L max(n·ω, 0)/p to the bit. `None` for other
+    /// emitters and for caps that cross the horizon (the one-sample path).
+    #[inline(always)]
+    fn projected_whole_batch(
+        &self,
+        receiver: &Receiver,
+        block: &Block<'_>,
+        out: &mut [f64],
+    ) -> Option<PartHits> {
+        let radiance = self.uniform_radiance();
+        let normal = receiver.normal;
+        // L (n·ω)/p of a drawn direction; 0 where `EmitterProjected::sample`
+        // would draw none (a density that is not positive and finite).
+        let value = hoisted(
+            #[inline(always)]
+            move |(direction, pdf): (DVec3, f64)| {
+                let v = radiance * direction.dot(normal).max(0.0) / pdf;
+                if pdf > 0.0 && pdf.is_finite() {
+                    v
+                } else {
+                    0.0
+                }
+            },
+        );
+        match &self.projected {
+            EmitterProjected::Sphere(s) => {
+                let whole = &s.whole()?;
+                Some(single(
+                    block,
+                    out,
+                    #[inline(always)]
+                    |_, u| {
+                        let d = whole.sample_direction(u);
+                        value((d.direction, d.pdf))
+                    },
+                ))
+            }
+            EmitterProjected::Cap(cap, r) => {
+                let whole = &cap.whole()?;
+                let (frame, cap_normal) = (&{ r.frame }, r.normal);
+                let omega = cap.projected_solid_angle();
+                Some(single(
+                    block,
+                    out,
+                    #[inline(always)]
+                    |_, u| {
+                        let w = frame.from_local(whole.sample(u).direction);
+                        value((w, cap_normal.dot(w).max(0.0) / omega))
+                    },
+                ))
+            }
+            _ => None,
+        }
+    }
+}
+
 /// How many light directions [`disk_table_batch`] draws at a time (three
 /// arrays of f64 on the stack, 3 KB).
 const DISK_TABLE_BATCH: usize = 128;
@@ -640,42 +706,50 @@ fn light_batch(
     // One loop per case, decided once: with the test inside, the loop did
     // not vectorise for AVX2 (measured on the uniform sky).
     match light_radiance {
-        Some(uniform) => single(
+        Some(uniform) => drawn_light_values(
+            &light_sample,
+            #[inline(always)]
+            |s| uniform * s.direction.dot(normal).max(0.0) / s.pdf,
             block,
             out,
-            #[inline(always)]
-            |i, u| {
-                // Branch-free, as in `mis_batch`.
-                let (s, drawn) = match light_sample(i, u) {
-                    Some(s) => (s, true),
-                    None => (NO_LIGHT_DIRECTION, false),
-                };
-                let v = uniform * s.direction.dot(normal).max(0.0) / s.pdf;
-                if drawn {
-                    v
-                } else {
-                    0.0
-                }
-            },
         ),
-        None => single(
+        None => drawn_light_values(
+            &light_sample,
+            #[inline(always)]
+            |s| radiance_cos(s.direction) / s.pdf,
             block,
             out,
-            #[inline(always)]
-            |i, u| {
-                let (s, drawn) = match light_sample(i, u) {
-                    Some(s) => (s, true),
-                    None => (NO_LIGHT_DIRECTION, false),
-                };
-                let v = radiance_cos(s.direction) / s.pdf;
-                if drawn {
-                    v
-                } else {
-                    0.0
-                }
-            },
         ),
     }
+}
+
+/// `value(s)` of every light direction `s` that `light_sample` draws, 0
+/// where it draws none: branch-free, as in `mis_batch` (an undrawn lane
+/// evaluates `value` on [`NO_LIGHT_DIRECTION`] and discards it).
+#[inline(always)]
+fn drawn_light_values(
+    light_sample: impl Fn(usize, DVec2) -> Option<LightDirection>,
+    value: impl Fn(LightDirection) -> f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    single(
+        block,
+        out,
+        #[inline(always)]
+        |i, u| {
+            let (s, drawn) = match light_sample(i, u) {
+                Some(s) => (s, true),
+                None => (NO_LIGHT_DIRECTION, false),
+            };
+            let v = value(s);
+            if drawn {
+                v
+            } else {
+                0.0
+            }
+        },
+    )
 }
 
 /// `out[i] += f(i, u_i)` over the block, counting the non-zero values.
@@ -721,8 +795,10 @@ fn technique_batch(
         |w| radiance(w),
     );
     match emitter.technique {
-        // Projected sampling and the control variate have no block kernel
-        // yet: the one-sample path, sample by sample (the same bits).
+        // Projected sampling (but for whole caps and spheres, which
+        // `projected_whole_batch` took) and the control variate have no
+        // block kernel: the one-sample path, sample by sample (the same
+        // bits).
         Technique::Projected | Technique::ControlVariate => single(
             block,
             out,

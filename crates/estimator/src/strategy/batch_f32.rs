@@ -639,6 +639,21 @@ impl PreparedEmitterF32 {
             ),
             Projected::Cap(cap) => {
                 let omega = cap.projected_solid_angle();
+                // A cap wholly above the horizon: its closed form alone, in
+                // a loop that vectorises (the same bits as `sample`).
+                if let Some(whole) = cap.whole() {
+                    let whole = &whole;
+                    return single(
+                        radiance,
+                        block,
+                        out,
+                        #[inline(always)]
+                        |u| {
+                            let w = frame.from_local(whole.sample(u).direction);
+                            cos_over_pdf(normal, w, normal.dot(w).max(0.0) / omega)
+                        },
+                    );
+                }
                 single(
                     radiance,
                     block,
@@ -650,16 +665,33 @@ impl PreparedEmitterF32 {
                     },
                 )
             }
-            Projected::Sphere(s) => single(
-                radiance,
-                block,
-                out,
-                #[inline(always)]
-                |u| {
-                    let l = s.sample(u);
-                    cos_over_pdf(normal, l.direction, l.pdf)
-                },
-            ),
+            Projected::Sphere(s) => {
+                // As for caps; and only the direction and density, which
+                // is all the estimate needs (the same bits as `sample`).
+                if let Some(whole) = s.whole() {
+                    let whole = &whole;
+                    return single(
+                        radiance,
+                        block,
+                        out,
+                        #[inline(always)]
+                        |u| {
+                            let d = whole.sample_direction(u);
+                            cos_over_pdf(normal, d.direction, d.pdf)
+                        },
+                    );
+                }
+                single(
+                    radiance,
+                    block,
+                    out,
+                    #[inline(always)]
+                    |u| {
+                        let d = s.sample_direction(u);
+                        cos_over_pdf(normal, d.direction, d.pdf)
+                    },
+                )
+            }
             Projected::Polygon(p) => single(
                 radiance,
                 block,

@@ -153,7 +153,7 @@ impl EmitterProjected {
                 (w, r.normal.dot(w).max(0.0) / cap.projected_solid_angle())
             }
             EmitterProjected::Sphere(s) => {
-                let l = s.sample(u);
+                let l = s.sample_direction(u);
                 (l.direction, l.pdf)
             }
             EmitterProjected::Polygon(p) => {
