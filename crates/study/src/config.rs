@@ -127,9 +127,8 @@ impl StudyConfig {
     /// estimates need 2 samples in each of their 16 randomizations; 2^20 is
     /// the size for a study that finishes in under two minutes on
     /// two cores (measured on a 2-core AVX-512 machine: 4,992 rows in 42 s;
-    /// on a 2-core AVX2 machine without AVX-512 the same rows' times, taken
-    /// before the estimator's kernels lost their scalar tails, added up to
-    /// about 2.3 minutes).
+    /// on a 2-core AVX2 machine without AVX-512, 173 to 232 s over three
+    /// runs, so that target is not met there; README).
     pub fn builtin() -> Self {
         StudyConfig {
             name: "builtin".into(),
