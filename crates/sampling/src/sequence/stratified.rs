@@ -463,6 +463,47 @@ mod tests {
         }
     }
 
+    /// The batch kernels' coordinates, made from a stratum `k` and 32
+    /// jitter bits `h` through the fixed-point sum `k·2³² + h`
+    /// (`Grid::unit_of_parts`, `Grid::unit_f32_of_parts`), are those of
+    /// the f64 sum `k + h·2⁻³²`, to the bit, in both precisions: on grids
+    /// below and above 2²¹ (where that sum starts to round) and 2²⁴, at
+    /// the strata's ends and middle, with the jitter's extreme bits and a
+    /// spread of hashed ones.
+    #[test]
+    fn coordinates_of_parts_are_those_of_the_rounded_sum() {
+        use super::super::stratified_batch::hash_u32;
+        use super::super::stratified_pow2::jittered_sum;
+        for n in [
+            1u32,
+            2,
+            3,
+            7,
+            1000,
+            1 << 20,
+            1_000_000,
+            (1 << 21) + 1,
+            3_125_000,
+            (1 << 24) + 1,
+            u32::MAX,
+        ] {
+            let (nx, ny) = near_square_grid(n);
+            let grid = Grid::new(n, nx, ny);
+            let hashed = (0..256u32).map(|j| hash_u32(0x243f_6a88_85a3_08d3, j));
+            let jitters = hashed.chain([0, 1, 1 << 31, u32::MAX - 1, u32::MAX]);
+            for h in jitters {
+                for k in [0, 1, n / 3, n / 2, n.saturating_sub(2), n - 1] {
+                    let x = grid.unit(jittered_sum(k, h));
+                    let got = grid.unit_of_parts(k, h);
+                    assert_eq!(got.to_bits(), x.to_bits(), "n {n} k {k} h {h}");
+                    let got = grid.unit_f32_of_parts(k, h);
+                    let want = round_down_24(x);
+                    assert_eq!(got.to_bits(), want.to_bits(), "n {n} k {k} h {h}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn never_one_even_on_adversarial_jitter() {
         // Largest stratum, all-ones jitter: k + ξ rounds up to n in f64.

@@ -37,7 +37,7 @@
 //! ns per sample) and, for `N ≤ 2²⁴` (a stratum at least one f32 step
 //! wide), never leaves its stratum.
 
-use super::stratified_batch::{golden_unit, hash_u32, Domain, PairKeys, TWO_POW_M32};
+use super::stratified_batch::{golden_unit, hash_u32, Domain, PairKeys};
 
 /// What `N = 2^p` fixes: the logarithms of `N`, `nx` and `ny`, and the
 /// multipliers of the cell order and the spreads.
@@ -140,10 +140,20 @@ impl PowerOfTwoGrid {
 }
 
 /// The sum `k + h·2⁻³²` of stratum `k` and jitter bits `h`, rounded to
-/// f64 (exact while `k < 2²¹`).
-#[inline(always)]
+/// f64 (exact while `k < 2²¹`): the reference the kernels' coordinates
+/// are tested against.
+#[cfg(test)]
 pub(super) fn jittered_sum(k: u32, h: u32) -> f64 {
-    f64::from(k) + f64::from(h) * TWO_POW_M32
+    f64::from(k) + f64::from(h) * super::stratified_batch::TWO_POW_M32
+}
+
+/// The fixed-point sum `k·2³² + h` of stratum `k` and jitter bits `h`,
+/// rounded to f64 (exact while `k < 2²¹`): `2³²` times the sum
+/// `k + h·2⁻³²` rounded to f64, to the bit, since scaling by a power of
+/// two commutes with the one rounding of each.
+#[inline(always)]
+pub(super) fn fixed_sum(k: u32, h: u32) -> f64 {
+    ((u64::from(k) << 32) | u64::from(h)) as f64
 }
 
 #[cfg(test)]
