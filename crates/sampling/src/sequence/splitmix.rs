@@ -62,8 +62,13 @@ impl SplitMix64 {
     }
 
     /// The state s₀ + (index + 1)·γ whose mix is output `index`; output
-    /// `index + k` mixes this plus k·γ (an induction the compiler keeps in
-    /// vector registers).
+    /// `index + k` mixes this plus k·γ. The fills step a state by γ per
+    /// output rather than multiply k·γ: the compiler keeps the stepped
+    /// states in vector registers and adds 16γ per vector, where the
+    /// product k·γ cost a 64-bit vector multiply per 8 outputs, a third of
+    /// the generator's multiplies (criterion, `soa` group on an AVX-512
+    /// host: the cosine- and uniform-hemisphere f32 slice forms with their
+    /// numbers took 7 % less time once the fills stepped the state).
     #[inline(always)]
     fn state_before(&self, index: u64) -> u64 {
         self.state
@@ -77,9 +82,10 @@ impl SplitMix64 {
     #[inline(always)]
     pub fn fill_2d_f32(&self, first: u64, x: &mut [f32], y: &mut [f32]) {
         const SCALE: f32 = 1.0 / 16_777_216.0;
-        let base = self.state_before(first);
-        for (k, (xk, yk)) in x.iter_mut().zip(y.iter_mut()).enumerate() {
-            let bits = mix64(base.wrapping_add((k as u64).wrapping_mul(GAMMA)));
+        let mut state = self.state_before(first);
+        for (xk, yk) in x.iter_mut().zip(y.iter_mut()) {
+            let bits = mix64(state);
+            state = state.wrapping_add(GAMMA);
             // Both values are below 2^24: the signed conversion is exact
             // and is one instruction on every vector set.
             *xk = (bits >> 40) as i32 as f32 * SCALE;
@@ -92,9 +98,10 @@ impl SplitMix64 {
     #[inline(always)]
     pub fn fill_2d(&self, first: u64, x: &mut [f64], y: &mut [f64]) {
         const SCALE: f64 = 1.0 / 4_294_967_296.0;
-        let base = self.state_before(first);
-        for (k, (xk, yk)) in x.iter_mut().zip(y.iter_mut()).enumerate() {
-            let bits = mix64(base.wrapping_add((k as u64).wrapping_mul(GAMMA)));
+        let mut state = self.state_before(first);
+        for (xk, yk) in x.iter_mut().zip(y.iter_mut()) {
+            let bits = mix64(state);
+            state = state.wrapping_add(GAMMA);
             *xk = u32_to_f64_exact(bits >> 32) * SCALE;
             *yk = u32_to_f64_exact(bits & 0xffff_ffff) * SCALE;
         }
