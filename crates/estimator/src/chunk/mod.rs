@@ -25,7 +25,6 @@
 
 mod mcg;
 mod precision_f32;
-mod splitmix;
 
 use std::cell::RefCell;
 
@@ -36,7 +35,6 @@ use lambert_sampling::sequence::SampleSequence;
 pub use lambert_sampling::sequence::round_down_24;
 pub use mcg::McgStream;
 pub use precision_f32::{independent_chunk_f32, sequence_chunk_f32};
-pub use splitmix::SplitMixStream;
 
 use crate::statistics::Estimate;
 use crate::strategy::{PartHits, PreparedEmitter};

@@ -3,7 +3,7 @@
 //! Its coordinates are 24-bit: u₃₂ = k·2⁻²⁴, exactly representable in
 //! f32 and never 1.
 //! - **Independent samples** come from the chunk's own SplitMix64 stream
-//!   ([`SplitMixStream`], seeded with the chunk's seed), whose outputs are
+//!   ([`SplitMix64::from_state`] of the chunk's seed), whose outputs are
 //!   computed many lanes at a time with one 64-bit finaliser each, where
 //!   the f64 path's `Pcg64Mcg` stream costs a 128-bit multiply per output
 //!   ([`super::mcg`]): the generator is part of the per-sample cost the
@@ -31,9 +31,9 @@ use std::cell::RefCell;
 
 use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
-use lambert_sampling::sequence::SampleSequence;
+use lambert_sampling::sequence::{SampleSequence, SplitMix64};
 
-use super::{ChunkResult, McgStream, SplitMixStream, BLOCK};
+use super::{ChunkResult, McgStream, BLOCK};
 use crate::statistics::Estimate;
 use crate::strategy::{PreparedEmitter, PreparedEmitterF32};
 
@@ -132,7 +132,7 @@ fn block<C: Coordinates>(
 /// samples `first..` starts at output `first + r·n`.
 struct StreamBlock<'a> {
     stream: &'a McgStream,
-    stream32: &'a SplitMixStream,
+    stream32: &'a SplitMix64,
     first: u64,
     n: u64,
 }
@@ -164,7 +164,7 @@ pub fn independent_chunk_f32(
     isa: Isa,
 ) -> ChunkResult {
     let stream = McgStream::seed_from_u64(chunk_seed);
-    let stream32 = SplitMixStream::new(chunk_seed);
+    let stream32 = SplitMix64::from_state(chunk_seed);
     // Emitter k's first output: the dimensions of the emitters before it.
     let offsets: Vec<u64> = prepared
         .iter()

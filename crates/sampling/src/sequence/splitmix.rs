@@ -55,6 +55,14 @@ impl SplitMix64 {
         SplitMix64 { state: mix64(seed) }
     }
 
+    /// The stream whose state before output 0 is `state` itself, without
+    /// [`SplitMix64::new`]'s scrambling: output k is
+    /// `mix64(state + (k + 1)·γ)`, SplitMix64 as its authors seed it (the
+    /// f32 estimator's chunk streams start from their chunk seeds so).
+    pub fn from_state(state: u64) -> Self {
+        SplitMix64 { state }
+    }
+
     /// Output number `index` (64 bits).
     #[inline(always)]
     pub fn at(&self, index: u64) -> u64 {
@@ -125,6 +133,44 @@ mod tests {
     /// The published SplitMix64 sequence for state 0 (the reference
     /// implementation's first outputs, as quoted by Vigna's xoshiro page
     /// for seeding): 0xe220a8397b1dcdaf, 0x6e789e6aa1b965f4, 0x06c45d188009454f.
+    /// SplitMix64 as its authors step it, one output after the other.
+    fn serial(state: u64, count: usize) -> Vec<u64> {
+        let mut state = state;
+        (0..count)
+            .map(|_| {
+                state = state.wrapping_add(GAMMA);
+                mix64(state)
+            })
+            .collect()
+    }
+
+    /// Random access and the batch fills give the serial generator's
+    /// numbers from any offset and for any length, and the f32 points are
+    /// the top 24 bits of each half.
+    #[test]
+    fn same_numbers_as_the_serial_generator_from_any_offset() {
+        for state in [0u64, 1, 0xdead_beef, u64::MAX] {
+            let want = serial(state, 300);
+            let stream = SplitMix64::from_state(state);
+            for (k, &w) in want.iter().enumerate() {
+                assert_eq!(stream.at(k as u64), w, "state {state}, output {k}");
+            }
+            for first in [0usize, 1, 5, 130] {
+                for len in [0usize, 1, 3, 17, 101] {
+                    let (mut x, mut y) = (vec![0.0f32; len], vec![0.0f32; len]);
+                    stream.fill_2d_f32(first as u64, &mut x, &mut y);
+                    for k in 0..len {
+                        let bits = want[first + k];
+                        assert_eq!(f64::from(x[k]), (bits >> 40) as f64 / 16_777_216.0);
+                        let lo = ((bits & 0xffff_ffff) >> 8) as f64 / 16_777_216.0;
+                        assert_eq!(f64::from(y[k]), lo);
+                        assert!(x[k] < 1.0 && y[k] < 1.0);
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn matches_the_reference_sequence() {
         let rng = SplitMix64 { state: 0 };
