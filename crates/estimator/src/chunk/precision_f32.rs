@@ -35,7 +35,7 @@ use lambert_sampling::sequence::{SampleSequence, SplitMix64};
 
 use super::{ChunkResult, McgStream, BLOCK};
 use crate::statistics::Estimate;
-use crate::strategy::{PreparedEmitter, PreparedEmitterF32};
+use crate::strategy::{PreparedEmitter, PreparedEmitterF32, Store};
 
 /// A worker thread's buffers for f32 chunks, kept from chunk to chunk.
 #[derive(Default)]
@@ -55,13 +55,30 @@ thread_local! {
     static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
 }
 
-/// Runs `f` with this thread's f32 scratch (values sized `n` and zeroed,
-/// coordinate blocks sized [`BLOCK`]).
-fn with_scratch<R>(n: usize, f: impl FnOnce(&mut Scratch) -> R) -> R {
+/// Whether the first emitter's f32 kernel overwrites each block's values
+/// ([`Store::Overwrite`]), so that the chunk's values need not be zeroed
+/// first: it does when it runs in f32 (an emitter in f64 adds).
+fn first_overwrites(f32s: &[Option<PreparedEmitterF32>]) -> bool {
+    matches!(f32s.first(), Some(Some(_)))
+}
+
+/// Runs `f` with this thread's f32 scratch: values sized `n`, zeroed
+/// unless [`first_overwrites`] (then they hold whatever the previous
+/// chunk left), coordinate blocks sized [`BLOCK`].
+fn with_scratch<R>(
+    n: usize,
+    f32s: &[Option<PreparedEmitterF32>],
+    f: impl FnOnce(&mut Scratch) -> R,
+) -> R {
     SCRATCH.with(|cell| {
         let mut guard = cell.borrow_mut();
         let s = &mut *guard;
-        s.values.clear();
+        if first_overwrites(f32s) {
+            // Only slots past the previous length are written here.
+            s.values.truncate(n);
+        } else {
+            s.values.clear();
+        }
         s.values.resize(n, 0.0);
         s.u32s.iter_mut().for_each(|v| v.resize(BLOCK, 0.0));
         s.u64s.iter_mut().for_each(|v| v.resize(BLOCK, 0.0));
@@ -81,7 +98,8 @@ trait Coordinates {
 
 /// Evaluates one block of every emitter into `values`, in the emitters'
 /// precisions, with the coordinates `coords(k)` gives emitter k; adds the
-/// part hits to `hits`.
+/// part hits to `hits`. The first emitter overwrites the block's values
+/// when it runs in f32 ([`first_overwrites`]); every other adds.
 /// The kernels run through the emitters' `add_batch_in` (one copy per
 /// instruction set, shared by the independent and sequence chunks).
 #[inline(always)]
@@ -110,7 +128,8 @@ fn block<C: Coordinates>(
                 } else {
                     [&vx[..m], &vy[..m]]
                 };
-                q.add_batch_in(isa, ux, uy, vx, vy, values)
+                let store = if k == 0 { Store::Overwrite } else { Store::Add };
+                q.add_batch_in(isa, ux, uy, vx, vy, values, store)
             }
             None => {
                 let [ux, uy, vx, vy] = &mut s.u64s;
@@ -174,7 +193,7 @@ pub fn independent_chunk_f32(
             Some(first)
         })
         .collect();
-    with_scratch(n, |s| {
+    with_scratch(n, f32s, |s| {
         isa.run(
             #[inline(always)]
             || {
@@ -224,7 +243,7 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
         })
         .collect();
     let all_f32 = f32s.iter().all(Option::is_some);
-    with_scratch(n, |s| {
+    with_scratch(n, f32s, |s| {
         let [mut px, mut py] = std::mem::take(&mut s.points);
         let [mut qx, mut qy] = std::mem::take(&mut s.points_f32);
         // Every element is written by the fills below: no zeroing per chunk.
@@ -313,5 +332,64 @@ impl Coordinates for SequenceBlock<'_> {
         let (from, len) = (self.from(request), x.len());
         let [qx, qy] = self.points.f32s;
         [&qx[from..from + len], &qy[from..from + len]]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimation::{prepare, prepare_f32};
+    use crate::strategy::Strategy;
+    use lambert_light::builtin::builtin_scenes;
+
+    /// Sets this thread's f32 values buffer to `values`.
+    fn leave_in_buffer(values: Vec<f64>) {
+        SCRATCH.with(|cell| cell.borrow_mut().values = values);
+    }
+
+    /// A chunk whose first emitter overwrites its values
+    /// ([`first_overwrites`]) gives the bits of a chunk on a zeroed buffer,
+    /// whatever the buffer held: NaNs (an unwritten slot would carry one
+    /// into the estimate as a non-finite sample) or a longer chunk's
+    /// values. Every built-in scene (several lights, delta lights,
+    /// emitters that fall back to f64) × every strategy and `auto`, at a
+    /// chunk length that ends inside a block. Negative control: a kernel
+    /// that adds to the poisoned buffer instead leaves NaNs.
+    #[test]
+    fn overwriting_first_emitter_ignores_what_the_buffer_held() {
+        let isa = Isa::selected();
+        let n = BLOCK + 37;
+        let mut overwriting = 0;
+        for named in builtin_scenes() {
+            let scene = &named.scene;
+            for strategy in std::iter::once(Strategy::Auto).chain(Strategy::ALL) {
+                let (prepared, _) = prepare(scene, strategy);
+                let (f32s, _) = prepare_f32(scene, &prepared);
+                let run = || independent_chunk_f32(&prepared, &f32s, &scene.receiver, 7, n, isa);
+                leave_in_buffer(Vec::new());
+                let fresh = run();
+                assert_eq!(fresh.estimate.non_finite(), 0, "{}", named.name);
+                for stale in [vec![f64::NAN; 2 * n], vec![1e300; n + 1]] {
+                    leave_in_buffer(stale);
+                    let again = run();
+                    assert_eq!(again.estimate, fresh.estimate, "{} {strategy}", named.name);
+                    assert_eq!(again.hits, fresh.hits, "{} {strategy}", named.name);
+                }
+                overwriting += usize::from(first_overwrites(&f32s));
+            }
+        }
+        // The test means something only if most cases take the path.
+        assert!(overwriting >= 50, "{overwriting} overwriting cases");
+
+        let scene = &builtin_scenes()[0].scene;
+        let (prepared, _) = prepare(scene, Strategy::Light);
+        let (f32s, _) = prepare_f32(scene, &prepared);
+        let q = f32s[0].as_ref().expect("an f32 emitter");
+        let u = vec![0.25f32; 64];
+        for (store, finite) in [(Store::Overwrite, true), (Store::Add, false)] {
+            let mut out = vec![f64::NAN; 64];
+            q.add_batch_in(isa, &u, &u, &u, &u, &mut out, store);
+            assert_eq!(out.iter().all(|v| v.is_finite()), finite, "{store:?}");
+        }
     }
 }

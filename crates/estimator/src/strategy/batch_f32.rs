@@ -36,19 +36,20 @@ use lambert_sampling::isa::Isa;
 
 use super::cone_mis::ConeMisF32;
 use super::prepared_f32::{Area, Light, PreparedEmitterF32, Projected, Shape};
-use super::{Heuristic, PartHits, Technique};
+use super::{Heuristic, PartHits, Store, Technique};
 
 use std::f32::consts::PI;
 
 /// One block's f32 coordinates, cut to one length: `u` (`ux`, `uy`) and
 /// MIS's second point `v` (`vx`, `vy`; a copy of `u`'s slices for the
 /// techniques that read one point, so that every span can be cut from
-/// all four alike).
+/// all four alike), and how [`accumulate`] stores the values.
 struct Block<'a> {
     ux: &'a [f32],
     uy: &'a [f32],
     vx: &'a [f32],
     vy: &'a [f32],
+    store: Store,
 }
 
 /// Samples per pass of [`accumulate`]'s two loops: their f32 parts (2 KB)
@@ -56,8 +57,9 @@ struct Block<'a> {
 const SPAN: usize = 256;
 
 /// `out[i] += L·g(u_i, v_i)` with `g` the sum of a sample's `P` parts,
-/// formed in f32 and widened to f64; returns how many samples had each
-/// part non-zero (at most two parts).
+/// formed in f32 and widened to f64 (`out[i] = …` with
+/// [`Store::Overwrite`]); returns how many samples had each part non-zero
+/// (at most two parts).
 ///
 /// Two loops per [`SPAN`] samples: the first forms the parts and their
 /// sum in f32 and counts the non-zero parts in 32-bit lanes, the second
@@ -101,8 +103,17 @@ fn accumulate<const P: usize>(
                 g[0] + g[P - 1]
             };
         }
-        for (o, &g) in out.iter_mut().zip(sums.iter()) {
-            *o += radiance * f64::from(g);
+        match block.store {
+            Store::Add => {
+                for (o, &g) in out.iter_mut().zip(sums.iter()) {
+                    *o += radiance * f64::from(g);
+                }
+            }
+            Store::Overwrite => {
+                for (o, &g) in out.iter_mut().zip(sums.iter()) {
+                    *o = radiance * f64::from(g);
+                }
+            }
         }
         hits[0] += u64::from(counts[0]);
         hits[1] += u64::from(counts[1]);
@@ -282,6 +293,7 @@ fn disk_light_batch(
                 uy: dy,
                 vx: dz,
                 vy: dz,
+                store: block.store,
             };
             accumulate(
                 radiance,
@@ -334,6 +346,7 @@ impl PreparedEmitterF32 {
     /// inlined, for the reason [`PreparedEmitter::add_batch_in`](super::PreparedEmitter::add_batch_in)
     /// gives.
     #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
     pub fn add_batch_in(
         &self,
         isa: Isa,
@@ -342,18 +355,21 @@ impl PreparedEmitterF32 {
         vx: &[f32],
         vy: &[f32],
         out: &mut [f64],
+        store: Store,
     ) -> PartHits {
         isa.run(
             #[inline(always)]
-            || self.add_batch(ux, uy, vx, vy, out),
+            || self.add_batch(ux, uy, vx, vy, out, store),
         )
     }
 
     /// Adds this emitter's estimate for samples `i` of a block to `out[i]`:
     /// `out[i] += L·g((ux[i], uy[i]), (vx[i], vy[i]))` with g in f32
     /// (module docs), over the shortest of the slices (`vx`, `vy` are read
-    /// only by MIS). Returns how many samples had a non-zero value in each
-    /// part ([`PreparedEmitter::parts`](super::PreparedEmitter::parts)).
+    /// only by MIS); with [`Store::Overwrite`], `out[i] = L·g(…)` over the
+    /// same samples, whatever `out` held. Returns how many samples had a
+    /// non-zero value in each part
+    /// ([`PreparedEmitter::parts`](super::PreparedEmitter::parts)).
     #[inline(always)]
     pub fn add_batch(
         &self,
@@ -362,6 +378,7 @@ impl PreparedEmitterF32 {
         vx: &[f32],
         vy: &[f32],
         out: &mut [f64],
+        store: Store,
     ) -> PartHits {
         let mis = matches!(self.technique, Technique::Mis(_));
         let mut n = ux.len().min(uy.len()).min(out.len());
@@ -373,11 +390,15 @@ impl PreparedEmitterF32 {
             uy: &uy[..n],
             vx: if mis { &vx[..n] } else { &ux[..n] },
             vy: if mis { &vy[..n] } else { &uy[..n] },
+            store,
         };
         let out = &mut out[..n];
         if let Some(c) = self.constant {
             for o in out.iter_mut() {
-                *o += c;
+                *o = match store {
+                    Store::Add => *o + c,
+                    Store::Overwrite => c,
+                };
             }
             return [if c != 0.0 { n as u64 } else { 0 }, 0];
         }
@@ -506,8 +527,14 @@ impl PreparedEmitterF32 {
             ),
             Technique::Light => self.light_batch(block, out),
             // Resolved when prepared: a constant, or its residual sampler's
-            // technique (light or projected).
-            Technique::ControlVariate => [0, 0],
+            // technique (light or projected). Nothing to add; a slot to
+            // overwrite gets 0.
+            Technique::ControlVariate => {
+                if block.store == Store::Overwrite {
+                    out.fill(0.0);
+                }
+                [0, 0]
+            }
             Technique::Area => self.area_batch(block, out),
             Technique::Projected => self.projected_batch(block, out),
             Technique::Mis(h) => self.mis_batch(h, sees, block, out),
@@ -853,6 +880,7 @@ impl PreparedEmitterF32 {
                             uy: &block.uy[at],
                             vx: lights,
                             vy: lights,
+                            store: block.store,
                         };
                         accumulate(
                             self.radiance,

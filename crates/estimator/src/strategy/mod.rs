@@ -62,6 +62,7 @@ mod fallback;
 mod occluded;
 mod prepared;
 mod prepared_f32;
+mod store;
 pub mod value_bound;
 
 pub use control_variate::ControlVariate;
@@ -72,6 +73,7 @@ pub use fallback::TechniqueFallback;
 pub use occluded::{delta_irradiance_visible, OccludedEmitter};
 pub use prepared::{PartHits, PreparedEmitter};
 pub use prepared_f32::{F32Fallback, FallbackReason, PreparedEmitterF32, F32_MAX_RELATIVE_ERROR};
+pub use store::Store;
 pub use value_bound::{PartBound, PartShape};
 
 use std::fmt;
