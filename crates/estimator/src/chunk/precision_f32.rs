@@ -341,6 +341,7 @@ mod tests {
     use crate::estimation::{prepare, prepare_f32};
     use crate::strategy::Strategy;
     use lambert_light::builtin::builtin_scenes;
+    use lambert_sampling::sequence::Sobol;
 
     /// Sets this thread's f32 values buffer to `values`.
     fn leave_in_buffer(values: Vec<f64>) {
@@ -351,7 +352,7 @@ mod tests {
     /// ([`first_overwrites`]) gives the bits of a chunk on a zeroed buffer,
     /// whatever the buffer held: NaNs (an unwritten slot would carry one
     /// into the estimate as a non-finite sample) or a longer chunk's
-    /// values. Every built-in scene (several lights, delta lights,
+    /// values; independent and Sobol chunks. Every built-in scene (several lights, delta lights,
     /// emitters that fall back to f64) × every strategy and `auto`, at a
     /// chunk length that ends inside a block. Negative control: a kernel
     /// that adds to the poisoned buffer instead leaves NaNs.
@@ -365,15 +366,24 @@ mod tests {
             for strategy in std::iter::once(Strategy::Auto).chain(Strategy::ALL) {
                 let (prepared, _) = prepare(scene, strategy);
                 let (f32s, _) = prepare_f32(scene, &prepared);
-                let run = || independent_chunk_f32(&prepared, &f32s, &scene.receiver, 7, n, isa);
-                leave_in_buffer(Vec::new());
-                let fresh = run();
-                assert_eq!(fresh.estimate.non_finite(), 0, "{}", named.name);
-                for stale in [vec![f64::NAN; 2 * n], vec![1e300; n + 1]] {
-                    leave_in_buffer(stale);
-                    let again = run();
-                    assert_eq!(again.estimate, fresh.estimate, "{} {strategy}", named.name);
-                    assert_eq!(again.hits, fresh.hits, "{} {strategy}", named.name);
+                let sobol = Sobol::new(7);
+                let runs: [&dyn Fn() -> ChunkResult; 2] = [
+                    &|| independent_chunk_f32(&prepared, &f32s, &scene.receiver, 7, n, isa),
+                    &|| {
+                        let range = 64..64 + n as u64;
+                        sequence_chunk_f32(&prepared, &f32s, &scene.receiver, &sobol, range, isa)
+                    },
+                ];
+                for run in runs {
+                    leave_in_buffer(Vec::new());
+                    let fresh = run();
+                    assert_eq!(fresh.estimate.non_finite(), 0, "{}", named.name);
+                    for stale in [vec![f64::NAN; 2 * n], vec![1e300; n + 1]] {
+                        leave_in_buffer(stale);
+                        let again = run();
+                        assert_eq!(again.estimate, fresh.estimate, "{} {strategy}", named.name);
+                        assert_eq!(again.hits, fresh.hits, "{} {strategy}", named.name);
+                    }
                 }
                 overwriting += usize::from(first_overwrites(&f32s));
             }
