@@ -282,8 +282,8 @@ impl Estimate {
     /// the compensated sum gives the mean, then M₂ = Σ(x − m)² is summed
     /// about it (non-negative terms, plain adds in windows of 4096 values
     /// whose sums are compensated: within about 260u relative (u = 2⁻⁵³), see
-    /// `non_negative_lane_sums`). Two passes are at least as accurate as
-    /// Welford's update and cost a fraction of a push per sample, so the
+    /// `non_negative_lane_sums`). Two passes cost a fraction of a push per
+    /// sample (whose Welford update is accurate to a few u), so the
     /// estimators fill a chunk's values in a buffer and summarise it here;
     /// the result merges like any other estimate. Non-finite values are
     /// counted in [`non_finite`](Estimate::non_finite), non-zero ones in
