@@ -73,7 +73,7 @@ enum Expect {
     /// Values equal to ~1e-15: the standard error is the rounding floor.
     Floor,
     /// As `Floor`, and the mean is off by more than the sample standard
-    /// error can explain (here 115 of them, ~2u relative): the naive
+    /// error can explain (here over 200 of them, ~4u relative): the naive
     /// interval excludes the truth.
     FloorMatters,
 }

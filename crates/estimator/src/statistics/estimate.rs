@@ -13,6 +13,11 @@
 //! mean carries ~2·53 bits and [`Estimate::mean`] returns it rounded once.
 //! For a constant integrand x, `mean() == x` to within one rounding for any
 //! n up to 2⁵³; a plain running sum drifts by up to n·ε relative.
+//! [`Estimate::from_values`], which summarises a chunk held in memory, sums
+//! non-negative samples with plain adds in windows of 4096 values whose
+//! sums are compensated (within about 260u relative, u = 2⁻⁵³, whatever n
+//! is: `window_sums` gives the bound), samples of which one is negative
+//! with a Neumaier step per value, and equal samples exactly.
 //!
 //! **Variance.** Welford's recurrence (B. P. Welford, "Note on a method for
 //! calculating corrected sums of squares and products", Technometrics 4
@@ -30,7 +35,7 @@
 //! whatever the offset of the data (1e9 + noise of 1e-3 is no harder than
 //! noise alone), unlike the textbook `Σx² − n·m²`, which loses everything.
 //! [`Estimate::from_values`] sums its M₂ in windows of plain adds, within
-//! about 260u relative, u = 2⁻⁵³ (`non_negative_lane_sums` gives the bound).
+//! about 260u relative, u = 2⁻⁵³ (`window_sums` gives the bound).
 //!
 //! **Merge.** Two estimates combine by the pairwise formula of Chan, Golub &
 //! LeVeque (T. F. Chan, G. H. Golub, R. J. LeVeque, "Updating formulae and a
@@ -115,10 +120,9 @@ fn split_mean(sum: &NeumaierSum, n: u64) -> (f64, f64) {
 /// together, so it is part of every estimate's bits.
 const SUM_LANES: usize = 16;
 
-/// The compensated sum of `f(x)` over the finite values of `values`, and
-/// optionally the count of non-zero values, in
-/// [`SUM_LANES`] lanes (value i in lane i mod 16) merged in lane order, as
-/// [`Estimate::from_values`] documents.
+/// The compensated sum of `f(x)` over the finite values of `values`, in
+/// [`SUM_LANES`] lanes (value i in lane i mod 16) merged in lane order:
+/// how [`Estimate::from_values`] sums samples of which one is negative.
 ///
 /// Branch-free, so it vectorises (the lanes are two vectors): a
 /// non-finite value adds 0 to its lane instead of being skipped, which
@@ -127,24 +131,13 @@ const SUM_LANES: usize = 16;
 /// rounding error (s − s) + 0 = +0 adds nothing to the compensation).
 /// `ALL_FINITE` drops that test and select (6 % of
 /// [`Estimate::from_values`]'s time): the bits are the same when every
-/// value is finite, and a non-finite value then makes the sum non-finite
-/// (see `from_values`). `COUNT` also counts the values x ≠ 0 (of `values`,
-/// not of f(x)), returned with the sum (0 without it): counting there, and
-/// not in a pass of its own, took `from_values` from 0.33 to 0.25 ns per
-/// value (AVX-512, 4096 values).
+/// value is finite.
 #[inline(always)]
-fn lane_sums<const ALL_FINITE: bool, const COUNT: bool>(
-    values: &[f64],
-    f: impl Fn(f64) -> f64,
-) -> (NeumaierSum, u64) {
+fn lane_sums<const ALL_FINITE: bool>(values: &[f64], f: impl Fn(f64) -> f64) -> NeumaierSum {
     const LANES: usize = SUM_LANES;
     let mut s = [0.0f64; LANES];
     let mut c = [0.0f64; LANES];
-    let mut nonzero = [0u64; LANES];
-    let add = |s: &mut f64, c: &mut f64, nz: &mut u64, x: f64| {
-        if COUNT {
-            *nz += u64::from(x != 0.0);
-        }
+    let add = |s: &mut f64, c: &mut f64, x: f64| {
         let y = if ALL_FINITE || x.is_finite() {
             f(x)
         } else {
@@ -163,85 +156,137 @@ fn lane_sums<const ALL_FINITE: bool, const COUNT: bool>(
     let mut blocks = values.chunks_exact(LANES);
     for block in blocks.by_ref() {
         for j in 0..LANES {
-            add(&mut s[j], &mut c[j], &mut nonzero[j], block[j]);
+            add(&mut s[j], &mut c[j], block[j]);
         }
     }
     for (j, &x) in blocks.remainder().iter().enumerate() {
-        add(&mut s[j], &mut c[j], &mut nonzero[j], x);
+        add(&mut s[j], &mut c[j], x);
     }
     let mut sum = NeumaierSum::from_parts(s[0], c[0]);
     for j in 1..LANES {
         sum.merge(&NeumaierSum::from_parts(s[j], c[j]));
     }
-    (sum, nonzero.iter().sum())
+    sum
 }
 
-/// Values per window of [`non_negative_lane_sums`]: each of its
-/// [`SUM_LANES`] lanes adds at most `WINDOW / SUM_LANES` = 256 terms
+/// Values per window of [`window_sums`] when it sums M₂: each of its
+/// [`SUM_LANES`] lanes adds at most `M2_WINDOW / SUM_LANES` = 256 terms
 /// without compensation before the window's lane sums join compensated
 /// totals. A chunk of the estimators (4096 samples) is one window.
-const WINDOW: usize = 4096;
+const M2_WINDOW: usize = 4096;
 
-/// Σ f(x) over the finite values of `values` for an f(x) ≥ 0 (the squared
-/// deviations of M₂), as [`Estimate::from_values`] documents: value i in
-/// lane i mod [`SUM_LANES`], plain sums within each [`WINDOW`], each
-/// window's lane sums added to that lane's Neumaier sum, the lanes merged
-/// in order. `ALL_FINITE` as in [`lane_sums`].
+/// Values per window of [`window_sums`] when it sums the samples
+/// themselves: 16 terms per lane, so that the mean is within about 20u of
+/// exact (the rounding floor, `super::rounding`, is derived from it),
+/// where 256 terms would allow 260u; the 16 compensated steps per window
+/// cost less than one Neumaier step per 16 values.
+const MEAN_WINDOW: usize = 256;
+
+/// What the first pass of [`Estimate::from_values`] learns besides the
+/// sum, over the finite values: how many are non-zero, the smallest and the
+/// largest (a chunk with no finite value has min = +∞, max = −∞).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Scan {
+    nonzero: u64,
+    min: f64,
+    max: f64,
+}
+
+/// Σ f(x) over the finite values of `values` for an f(x) ≥ 0, as
+/// [`Estimate::from_values`] documents: value i in lane i mod
+/// [`SUM_LANES`], plain sums within each window of `WINDOW` values
+/// ([`MEAN_WINDOW`] for the samples, [`M2_WINDOW`] for M₂), each window's
+/// lane sums added to that lane's Neumaier sum, the lanes merged in order.
+/// `ALL_FINITE` as in [`lane_sums`]. With `SCAN` it also returns the
+/// [`Scan`] of `values` (of x, not f(x); without it, a [`Scan`] of
+/// nothing): counting there, and not in a pass of its own, took
+/// `from_values` from 0.33 to 0.25 ns per value (AVX-512, 4096 values).
 ///
-/// **Why not compensated throughout.** The terms are all ≥ 0, so their
+/// **Why not compensated throughout.** When the terms are all ≥ 0 their
 /// sum has no cancellation: a plain sum of k non-negative terms is within
 /// (k − 1)·u of the exact sum, relative (u = 2⁻⁵³; Higham, "Accuracy and
-/// Stability of Numerical Algorithms", 2nd ed., §4.2). With k ≤ 256 per
-/// lane and window, and each term (x − m)² within about 3u of its exact
-/// value, M₂ is within (255 + 3 + a few)·u ≈ 3e-14 relative of the exact
-/// M₂ of the rounded samples, whatever n is (the windows' sums are
-/// compensated). That is ten orders of magnitude below the statistical
-/// error of any variance estimate, and the plain adds made the whole
-/// estimate of a light-sampled sphere 6 % (f64) and 10 % (f32) faster than
-/// Neumaier steps per term (measured in one run against the compensated
-/// pass, medians of 5 seeds, 2²⁴ samples, AVX-512). The mean keeps its compensated sum: its
-/// bits are the estimate itself.
+/// Stability of Numerical Algorithms", 2nd ed., §4.2), and the windows'
+/// sums are compensated, so the bound holds whatever n is. With k = 16
+/// per lane and window (the samples) the sum is within about 17u; with
+/// k = 256 (M₂, whose terms (x − m)² are each within about 3u of exact)
+/// within about 260u ≈ 3e-14 relative, ten orders of magnitude below the
+/// statistical error of any variance estimate. Measured in one run
+/// against a Neumaier step per term (light-sampled sphere, whole
+/// estimate, medians of 5–7 seeds, 2²⁴ samples, AVX-512): the plain M₂
+/// made it 6 % (f64) and 10 % (f32) faster, and the plain sum of the
+/// samples a further 4 % (f64) and 6.5 % (f32), once whole windows ran
+/// with a fixed trip count (with the partial-window loop for every window
+/// the f32 gain was 2–4 %). The result is only claimed for f(x) ≥ 0:
+/// [`Estimate::from_values`] sums samples with a negative one compensated
+/// ([`lane_sums`]).
 #[inline(always)]
-fn non_negative_lane_sums<const ALL_FINITE: bool>(
+fn window_sums<const ALL_FINITE: bool, const SCAN: bool, const WINDOW: usize>(
     values: &[f64],
     f: impl Fn(f64) -> f64,
-) -> NeumaierSum {
+) -> (NeumaierSum, Scan) {
     const LANES: usize = SUM_LANES;
     const { assert!(WINDOW.is_multiple_of(LANES)) };
-    let term = |x: f64| {
-        if ALL_FINITE || x.is_finite() {
-            f(x)
-        } else {
-            0.0
-        }
-    };
+    let finite = |x: f64| ALL_FINITE || x.is_finite();
+    let term = |x: f64| if finite(x) { f(x) } else { 0.0 };
     // The lanes' compensated totals as two arrays, added to lane by lane
     // like the window sums (an array of `NeumaierSum`s led the compiler to
     // split the window loop into 4-, 2-, 8- and 1-wide pieces, which
     // took back most of the gain).
     let (mut totals, mut compensations) = ([0.0f64; LANES], [0.0f64; LANES]);
-    for window in values.chunks(WINDOW) {
-        let mut s = [0.0f64; LANES];
-        let (blocks, rest) = window.as_chunks::<LANES>();
-        for block in blocks {
-            for j in 0..LANES {
-                s[j] += term(block[j]);
-            }
+    let mut nonzero = [0u64; LANES];
+    let (mut min, mut max) = ([f64::INFINITY; LANES], [f64::NEG_INFINITY; LANES]);
+    let mut step = |s: &mut [f64; LANES], j: usize, x: f64| {
+        s[j] += term(x);
+        if SCAN {
+            // Selects, not f64::min (whose NaN rule costs a blend); a
+            // non-finite x is never taken when ALL_FINITE is false.
+            nonzero[j] += u64::from(finite(x) && x != 0.0);
+            min[j] = if finite(x) && x < min[j] { x } else { min[j] };
+            max[j] = if finite(x) && x > max[j] { x } else { max[j] };
         }
-        for (j, &x) in rest.iter().enumerate() {
-            s[j] += term(x);
-        }
+    };
+    let mut close = |s: &[f64; LANES]| {
         for j in 0..LANES {
             let mut total = NeumaierSum::from_parts(totals[j], compensations[j]);
             total.add(s[j]);
             (totals[j], compensations[j]) = total.parts();
         }
+    };
+    // Whole windows apart from the last, partial one: a fixed trip count
+    // the compiler unrolls, with the scan's lanes kept in registers.
+    let (windows, last) = values.as_chunks::<WINDOW>();
+    for window in windows {
+        let mut s = [0.0f64; LANES];
+        for block in window.as_chunks::<LANES>().0 {
+            for (j, &x) in block.iter().enumerate() {
+                step(&mut s, j, x);
+            }
+        }
+        close(&s);
+    }
+    if !last.is_empty() {
+        let mut s = [0.0f64; LANES];
+        let (blocks, rest) = last.as_chunks::<LANES>();
+        for block in blocks {
+            for (j, &x) in block.iter().enumerate() {
+                step(&mut s, j, x);
+            }
+        }
+        for (j, &x) in rest.iter().enumerate() {
+            step(&mut s, j, x);
+        }
+        close(&s);
     }
     let mut sum = NeumaierSum::from_parts(totals[0], compensations[0]);
     for j in 1..LANES {
         sum.merge(&NeumaierSum::from_parts(totals[j], compensations[j]));
     }
-    sum
+    let scan = Scan {
+        nonzero: nonzero.iter().sum(),
+        min: min.iter().copied().fold(f64::INFINITY, f64::min),
+        max: max.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    };
+    (sum, scan)
 }
 
 impl Estimate {
@@ -278,51 +323,64 @@ impl Estimate {
         self.m2.add(before * after);
     }
 
-    /// The estimate of a block of samples held in memory, by two passes:
-    /// the compensated sum gives the mean, then M₂ = Σ(x − m)² is summed
-    /// about it (non-negative terms, plain adds in windows of 4096 values
-    /// whose sums are compensated: within about 260u relative (u = 2⁻⁵³), see
-    /// `non_negative_lane_sums`). Two passes cost a fraction of a push per
-    /// sample (whose Welford update is accurate to a few u), so the
-    /// estimators fill a chunk's values in a buffer and summarise it here;
-    /// the result merges like any other estimate. Non-finite values are
-    /// counted in [`non_finite`](Estimate::non_finite), non-zero ones in
-    /// [`nonzero`](Estimate::nonzero) (in the first pass, with the sums).
+    /// The estimate of a block of samples held in memory, by two passes.
+    /// The first sums the samples and finds their count of non-zero
+    /// values, their minimum and their maximum; the second sums
+    /// M₂ = Σ(x − m)² about the mean. Both sum in [`SUM_LANES`] lanes
+    /// (value i in lane i mod 16) with plain adds in windows of 4096 values
+    /// whose lane sums are compensated, which keeps non-negative terms
+    /// within about 260u relative (u = 2⁻⁵³; `window_sums` derives the
+    /// bound). Samples of which one is negative are summed with a
+    /// compensated (Neumaier) step per value instead, since their sum may
+    /// cancel; samples that are all equal give the exact block of
+    /// [`push_n`](Estimate::push_n) (mean x, M₂ = 0), so a zero-variance
+    /// integrand keeps its exact mean. Two passes cost a fraction of a
+    /// push per sample (whose Welford update is accurate to a few u), so
+    /// the estimators fill a chunk's values in a buffer and summarise it
+    /// here; the result merges like any other estimate. Non-finite values
+    /// are counted in [`non_finite`](Estimate::non_finite), non-zero ones
+    /// in [`nonzero`](Estimate::nonzero).
+    ///
+    /// ```
+    /// use lambert_estimator::statistics::Estimate;
+    /// let e = Estimate::from_values(&[0.1; 5000]);
+    /// assert_eq!((e.mean(), e.variance()), (Some(0.1), Some(0.0)));
+    /// let e = Estimate::from_values(&[1.0, 2.0, f64::NAN, 4.0]);
+    /// assert_eq!((e.n(), e.non_finite(), e.mean()), (3, 1, None));
+    /// ```
     #[inline(always)]
     pub fn from_values(values: &[f64]) -> Estimate {
-        // SUM_LANES interleaved compensated sums (value i goes to lane i mod 16),
-        // merged in a fixed order: the same accuracy as one, without one
-        // long dependency chain.
-        //
         // The usual case, every value finite, takes one pass for the sum
-        // and the non-zero count. A NaN or ±∞ makes its lane's compensation
-        // NaN for good ((±∞ − ±∞) or NaN enters it, and NaN + c = NaN), and
-        // so the merged sum's: a finite sum proves every value finite, and
-        // is then what the careful pass below would give, to the bit.
-        let (sum, nonzero) = lane_sums::<true, true>(values, |x| x);
+        // and the scan. A NaN or ±∞ makes its lane's sum non-finite for
+        // good (NaN + x = NaN, ∞ + x is ∞ or NaN), and so the merged
+        // sum: a finite sum proves every value finite, and is then what
+        // the checked pass below would give, to the bit.
+        let (mut sum, mut scan) = window_sums::<true, true, MEAN_WINDOW>(values, |x| x);
         let (hi, lo) = sum.parts();
-        let (n, nonzero, non_finite, sum) = if hi.is_finite() && lo.is_finite() {
-            (values.len() as u64, nonzero, 0, sum)
-        } else {
-            let mut n = 0u64;
-            let mut nonzero = 0u64;
-            for &x in values {
-                n += u64::from(x.is_finite());
-                nonzero += u64::from(x.is_finite() && x != 0.0);
-            }
-            let non_finite = values.len() as u64 - n;
-            let sum = if non_finite == 0 {
-                sum
-            } else {
-                lane_sums::<false, false>(values, |x| x).0
-            };
-            (n, nonzero, non_finite, sum)
-        };
+        let mut n = values.len() as u64;
+        if !(hi.is_finite() && lo.is_finite()) {
+            n = values.iter().map(|x| u64::from(x.is_finite())).sum();
+            (sum, scan) = window_sums::<false, true, MEAN_WINDOW>(values, |x| x);
+        }
+        let non_finite = values.len() as u64 - n;
         let all_finite = non_finite == 0;
         if n == 0 {
             return Estimate {
                 non_finite,
                 ..Estimate::new()
+            };
+        }
+        if scan.min == scan.max {
+            let mut constant = Estimate::new();
+            constant.push_n(scan.min, n);
+            constant.non_finite = non_finite;
+            return constant;
+        }
+        if scan.min < 0.0 {
+            sum = if all_finite {
+                lane_sums::<true>(values, |x| x)
+            } else {
+                lane_sums::<false>(values, |x| x)
             };
         }
         let (mean_hi, mean_lo) = split_mean(&sum, n);
@@ -331,14 +389,14 @@ impl Estimate {
             d * d
         };
         let m2 = if all_finite {
-            non_negative_lane_sums::<true>(values, deviation2)
+            window_sums::<true, false, M2_WINDOW>(values, deviation2).0
         } else {
-            non_negative_lane_sums::<false>(values, deviation2)
+            window_sums::<false, false, M2_WINDOW>(values, deviation2).0
         };
         Estimate {
             n,
             non_finite,
-            nonzero,
+            nonzero: scan.nonzero,
             sum,
             mean_hi,
             mean_lo,
@@ -574,36 +632,67 @@ mod tests {
             .collect();
         let square = |x: f64| x * x;
         assert_eq!(
-            lane_sums::<true, true>(&values, |x| x),
-            lane_sums::<false, true>(&values, |x| x)
+            lane_sums::<true>(&values, |x| x),
+            lane_sums::<false>(&values, |x| x)
         );
         assert_eq!(
-            lane_sums::<true, false>(&values, square),
-            lane_sums::<false, false>(&values, square)
+            lane_sums::<true>(&values, square),
+            lane_sums::<false>(&values, square)
         );
         let mut with_inf = values.clone();
         with_inf[17] = f64::INFINITY;
         assert_ne!(
-            lane_sums::<true, false>(&with_inf, |x| x),
-            lane_sums::<false, false>(&with_inf, |x| x)
+            lane_sums::<true>(&with_inf, |x| x),
+            lane_sums::<false>(&with_inf, |x| x)
         );
     }
 
     /// The windowed plain sums of non-negative terms are within their
-    /// derived bound of a compensated sum over every term: each lane adds
-    /// at most k = WINDOW / SUM_LANES terms plainly, within (k − 1)·u of
-    /// their exact sum (Higham §4.2, u = 2⁻⁵³), and the compensated window
-    /// totals and lane merges add about 2u; the reference (one Neumaier
-    /// sum) is within 2u + n·u² of exact. So |plain − reference| ≤
-    /// (k + 2)·u·Σterms. The data spans three whole windows and a
-    /// remainder, with terms over twelve orders of magnitude and zeros.
-    /// Skipping a non-finite value gives the bits of a 0 there, and the
-    /// unchecked form has the checked form's bits on finite values.
-    /// Negative control: the same bound rejects the sum without its
-    /// largest term.
+    /// derived bound of a compensated sum over every term, for both
+    /// windows: each lane adds at most k = W / SUM_LANES terms plainly,
+    /// within (k − 1)·u of their exact sum (Higham §4.2, u = 2⁻⁵³), and
+    /// the compensated window totals and lane merges add about 2u; the
+    /// reference (one Neumaier sum) is within 2u + n·u² of exact. So
+    /// |plain − reference| ≤ (k + 2)·u·Σterms. The data spans three whole
+    /// M₂ windows and a remainder, with terms over twelve orders of
+    /// magnitude and zeros. Skipping a non-finite value gives the bits of
+    /// a 0 there, and the unchecked form has the checked form's bits on
+    /// finite values. Negative control: the same bound rejects the sum
+    /// without its largest term.
     #[test]
     fn non_negative_sums_are_within_their_bound() {
-        let values: Vec<f64> = (0..3 * WINDOW + 37)
+        fn check<const W: usize>(values: &[f64]) {
+            let square = |x: f64| x * x;
+            let reference: NeumaierSum = values.iter().map(|&x| square(x)).sum();
+            let reference = reference.sum();
+            let u = f64::EPSILON / 2.0;
+            let bound = ((W / SUM_LANES) as f64 + 2.0) * u * reference;
+            let got = window_sums::<true, false, W>(values, square).0.sum();
+            assert!(
+                (got - reference).abs() <= bound,
+                "{W}: {got} vs {reference}"
+            );
+            let largest = values.iter().map(|&x| square(x)).fold(0.0, f64::max);
+            assert!((got - largest - reference).abs() > bound);
+            let bits = |s: NeumaierSum| {
+                let (s, c) = s.parts();
+                (s.to_bits(), c.to_bits())
+            };
+            assert_eq!(
+                bits(window_sums::<false, false, W>(values, square).0),
+                bits(window_sums::<true, false, W>(values, square).0)
+            );
+            let (mut odd, mut zeroed) = (values.to_vec(), values.to_vec());
+            for (at, bad) in [(5, f64::NAN), (900, f64::INFINITY), (W, f64::NAN)] {
+                odd[at] = bad;
+                zeroed[at] = 0.0;
+            }
+            assert_eq!(
+                bits(window_sums::<false, false, W>(&odd, square).0),
+                bits(window_sums::<true, false, W>(&zeroed, square).0)
+            );
+        }
+        let values: Vec<f64> = (0..3 * M2_WINDOW + 37)
             .map(|i| {
                 let x = ((i as f64) * 0.618_034).fract();
                 if i % 7 == 0 {
@@ -613,49 +702,129 @@ mod tests {
                 }
             })
             .collect();
-        let square = |x: f64| x * x;
-        let reference: NeumaierSum = values.iter().map(|&x| square(x)).sum();
-        let reference = reference.sum();
-        let u = f64::EPSILON / 2.0;
-        let bound = ((WINDOW / SUM_LANES) as f64 + 2.0) * u * reference;
-        let got = non_negative_lane_sums::<true>(&values, square).sum();
-        assert!((got - reference).abs() <= bound, "{got} vs {reference}");
-        let largest = values.iter().map(|&x| square(x)).fold(0.0, f64::max);
-        assert!((got - largest - reference).abs() > bound);
-        let bits = |s: NeumaierSum| {
-            let (s, c) = s.parts();
-            (s.to_bits(), c.to_bits())
+        check::<M2_WINDOW>(&values);
+        check::<MEAN_WINDOW>(&values);
+    }
+
+    /// The first pass's scan (non-zero count, minimum, maximum) is the
+    /// plain one over the finite values, checked or not, over several
+    /// windows and a remainder; the sum it returns with is the scan-free
+    /// sum's. Negative control: a scan that took the non-finite values
+    /// would report −∞ and ∞.
+    #[test]
+    fn the_scan_counts_and_bounds_the_finite_values() {
+        let values: Vec<f64> = (0..2 * M2_WINDOW + 21)
+            .map(|i| match i % 5 {
+                0 => 0.0,
+                _ => ((i as f64) * 0.618_034).fract() - 0.25,
+            })
+            .collect();
+        let naive = |v: &[f64]| {
+            let finite = || v.iter().copied().filter(|x| x.is_finite());
+            Scan {
+                nonzero: finite().filter(|&x| x != 0.0).count() as u64,
+                min: finite().fold(f64::INFINITY, f64::min),
+                max: finite().fold(f64::NEG_INFINITY, f64::max),
+            }
         };
+        let want = naive(&values);
+        assert!(want.min < 0.0 && want.max > 0.0 && want.nonzero < values.len() as u64);
         assert_eq!(
-            bits(non_negative_lane_sums::<false>(&values, square)),
-            bits(non_negative_lane_sums::<true>(&values, square))
+            window_sums::<true, true, MEAN_WINDOW>(&values, |x| x).1,
+            want
         );
-        let (mut odd, mut zeroed) = (values.clone(), values.clone());
-        for (at, bad) in [(5, f64::NAN), (900, f64::INFINITY), (WINDOW, f64::NAN)] {
-            odd[at] = bad;
-            zeroed[at] = 0.0;
-        }
         assert_eq!(
-            bits(non_negative_lane_sums::<false>(&odd, square)),
-            bits(non_negative_lane_sums::<true>(&zeroed, square))
+            window_sums::<false, true, MEAN_WINDOW>(&values, |x| x).1,
+            want
+        );
+        assert_eq!(
+            window_sums::<true, true, MEAN_WINDOW>(&values, |x| x).0,
+            window_sums::<true, false, MEAN_WINDOW>(&values, |x| x).0
+        );
+        let mut odd = values.clone();
+        odd[3] = f64::NEG_INFINITY;
+        odd[M2_WINDOW + 1] = f64::INFINITY;
+        odd[2 * M2_WINDOW + 20] = f64::NAN;
+        let got = window_sums::<false, true, MEAN_WINDOW>(&odd, |x| x).1;
+        assert_eq!(got, naive(&odd));
+        assert!(got.min > f64::NEG_INFINITY && got.max < f64::INFINITY);
+    }
+
+    /// Samples with a negative one are summed compensated, so a sum that
+    /// cancels keeps its small exact part: 10¹⁶ and −10¹⁶ around ones sum
+    /// exactly to the count of ones. Negative control: the plain window
+    /// sum of the same samples loses the ones (1 is below half an ulp of
+    /// 10¹⁶), so the rule is what keeps them.
+    #[test]
+    fn samples_with_a_negative_one_are_summed_compensated() {
+        let values: Vec<f64> = (0..48 * 90)
+            .map(|i| match i % 48 {
+                0 => 1e16,
+                16 => -1e16,
+                _ => 1.0,
+            })
+            .collect();
+        let ones = values.iter().filter(|&&x| x == 1.0).count() as f64;
+        let e = Estimate::from_values(&values);
+        assert_eq!(e.sum(), Some(ones));
+        assert_eq!(e.sum, lane_sums::<true>(&values, |x| x));
+        assert_ne!(
+            window_sums::<true, false, MEAN_WINDOW>(&values, |x| x)
+                .0
+                .sum(),
+            ones
         );
     }
 
-    /// The statistics as `from_values` computed them before its one-pass
-    /// fast path: the counts first, then sums that skip non-finite values.
+    /// Equal samples give push_n's exact block: the mean is the value and
+    /// the variance 0, with or without a non-finite sample among them.
+    /// Negative control: the plain window sum of 4096 copies of 0.1 is
+    /// not 409.6's nearest double, so without the rule the mean would be
+    /// off and the variance not 0.
+    #[test]
+    fn equal_samples_give_their_value_and_no_variance() {
+        for x in [0.1, 1.0 / 3.0, 7.0, 0.0, -2.5] {
+            let mut values = vec![x; M2_WINDOW + 5];
+            let e = Estimate::from_values(&values);
+            assert_eq!(
+                (e.mean(), e.variance(), e.n()),
+                (Some(x), Some(0.0), values.len() as u64)
+            );
+            assert_eq!(e.nonzero(), if x == 0.0 { 0 } else { values.len() as u64 });
+            values[9] = f64::NAN;
+            let e = Estimate::from_values(&values);
+            assert_eq!((e.non_finite(), e.n()), (1, M2_WINDOW as u64 + 4));
+            assert_eq!(bits(&e), bits(&careful(&values)));
+        }
+        let tenths = vec![0.1; M2_WINDOW];
+        let plain = window_sums::<true, false, MEAN_WINDOW>(&tenths, |x| x)
+            .0
+            .sum();
+        assert_ne!(plain, 0.1 * M2_WINDOW as f64);
+    }
+
+    /// The statistics as `from_values` defines them, by the checked passes
+    /// only: the counts first, then sums that skip non-finite values.
     fn careful(values: &[f64]) -> Estimate {
         let n = values.iter().filter(|x| x.is_finite()).count() as u64;
-        let nonzero = values
-            .iter()
-            .filter(|x| x.is_finite() && **x != 0.0)
-            .count() as u64;
-        let sum = lane_sums::<false, false>(values, |x| x).0;
+        let (plain, scan) = window_sums::<false, true, MEAN_WINDOW>(values, |x| x);
         if n == 0 {
             return Estimate {
                 non_finite: values.len() as u64,
                 ..Estimate::new()
             };
         }
+        if scan.min == scan.max {
+            let mut e = Estimate::new();
+            e.push_n(scan.min, n);
+            e.non_finite = values.len() as u64 - n;
+            return e;
+        }
+        let sum = if scan.min < 0.0 {
+            lane_sums::<false>(values, |x| x)
+        } else {
+            plain
+        };
         let (mean_hi, mean_lo) = split_mean(&sum, n);
         let deviation2 = |x: f64| {
             let d = (x - mean_hi) - mean_lo;
@@ -664,11 +833,11 @@ mod tests {
         Estimate {
             n,
             non_finite: values.len() as u64 - n,
-            nonzero,
+            nonzero: scan.nonzero,
             sum,
             mean_hi,
             mean_lo,
-            m2: non_negative_lane_sums::<false>(values, deviation2),
+            m2: window_sums::<false, false, M2_WINDOW>(values, deviation2).0,
         }
     }
 
@@ -717,7 +886,7 @@ mod tests {
                 }
                 let got = Estimate::from_values(&v);
                 assert_eq!(bits(&got), bits(&careful(&v)), "{bad} at {at}");
-                let (fast, _) = lane_sums::<true, true>(&v, |x| x);
+                let (fast, _) = window_sums::<true, true, MEAN_WINDOW>(&v, |x| x);
                 assert!(!fast.sum().is_finite(), "{bad} at {at}: fast sum finite");
             }
         }

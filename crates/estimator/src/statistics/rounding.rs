@@ -14,11 +14,18 @@
 //! form m̂ as follows, and each step's error is bounded (Higham, *Accuracy
 //! and Stability of Numerical Algorithms*, 2nd ed., 2002, §2.2 and §4.3):
 //!
-//! 1. Compensated (Neumaier 1974) sums of each chunk and their compensated
-//!    merges, kept as an unevaluated pair s + c: the pair is the exact sum
-//!    up to the roundings of the compensation term, |(s + c) − Σxᵢ| ≤
-//!    2N·u²·Σ|xᵢ| (each of at most 2N additions into c rounds a term no
-//!    larger than u·Σ|xᵢ|).
+//! 1. Each chunk's sum ([`Estimate::from_values`](super::Estimate::from_values)):
+//!    plain sums of at most k = 16 values per lane and window, within
+//!    γ₁₅·(their sum) of exact, γ_j = j·u/(1 − j·u) (Higham §4.2, for terms
+//!    ≥ 0); the window sums then join compensated (Neumaier 1974) lane
+//!    totals, which merge compensated, as do the chunks, kept as an
+//!    unevaluated pair s + c: the pair is the exact sum of what it was
+//!    given up to the roundings of the compensation term, ≤ 2N·u²·Σ (each
+//!    of at most 2N additions into c rounds a term no larger than u·Σ).
+//!    Together |(s + c) − Σxᵢ| ≤ (γ₁₅ + 2N·u²·(1 + γ₁₅))·Σxᵢ
+//!    ≤ (15u + 226u² + 2(N + 1)·u²)·Σxᵢ. (A chunk of equal values is summed
+//!    exactly, and one with a negative value fully compensated: both within
+//!    this.)
 //! 2. The mean of the pair as a double-length `hi + lo` ([`Estimate`](super::Estimate)
 //!    module docs): `hi = fl(s/N)` with an exact remainder, `lo` rounded, so
 //!    a relative error ≤ 2u²; then one rounding of hi + lo: ≤ u.
@@ -32,10 +39,14 @@
 //! With Σ|xᵢ| = N·m (the values are non-negative), the total is at most
 //!
 //! ```text
-//! |m̂ − (m + δ)| ≤ (5u + 4(N + 2)·u²) · (m + |δ|)  =: floor,
+//! |m̂ − (m + δ)| ≤ (21u + 4(N + 2)·u²) · (m + |δ|)  =: floor,
 //! ```
 //!
-//! which is ≈ 5.6e-16 relative for any N below 2⁴⁰. It bounds the
+//! (the 20u of steps 1–4 plus one u that holds the 226u² of γ₁₅ and the
+//! products of the steps' small factors), which is ≈ 2.3e-15 relative for
+//! any N below 2⁴⁰. Until the chunk sums took plain adds within windows
+//! (for speed: `Estimate::from_values`) step 1 was fully compensated and
+//! the floor 5u + 4(N + 2)u². It bounds the
 //! arithmetic of the accumulation only: each sample value carries the
 //! rounding error of its own evaluation (a few u relative for the samplers
 //! of this crate, some of it shared by every sample), which no averaging
@@ -48,23 +59,23 @@ pub const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
 
 /// The rounding floor of the module docs: a bound on |m̂ − (m + δ)|, the
 /// floating-point error of a mean of `n` non-negative sample values
-/// accumulated as this crate does (compensated chunk sums merged in order,
+/// accumulated as this crate does (chunk sums in windows of plain adds, merged compensated in order,
 /// optionally R randomized-QMC replicates, plus the delta lights' δ), where
 /// `magnitude` = m + |δ|:
 ///
 /// ```text
-/// floor = (5u + 4(n + 2)·u²) · magnitude,   u = 2⁻⁵³.
+/// floor = (21u + 4(n + 2)·u²) · magnitude,   u = 2⁻⁵³.
 /// ```
 ///
 /// ```
 /// use lambert_estimator::statistics::rounding::mean_rounding_floor;
-/// // π from 2²⁰ samples: about 1.7e-15.
+/// // π from 2²⁰ samples: about 7.3e-15.
 /// let floor = mean_rounding_floor(std::f64::consts::PI, 1 << 20);
-/// assert!(floor > 1.7e-15 && floor < 1.8e-15);
+/// assert!(floor > 7.3e-15 && floor < 7.4e-15);
 /// ```
 pub fn mean_rounding_floor(magnitude: f64, n: u64) -> f64 {
     let u = UNIT_ROUNDOFF;
-    (5.0 * u + 4.0 * (n as f64 + 2.0) * u * u) * magnitude.abs()
+    (21.0 * u + 4.0 * (n as f64 + 2.0) * u * u) * magnitude.abs()
 }
 
 #[cfg(test)]
