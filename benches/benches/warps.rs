@@ -233,6 +233,43 @@ fn batches(c: &mut Criterion) {
     g.finish();
 }
 
+/// The SplitMix64 fill of a precision, in the set the batch runs in.
+trait Fill: Sized {
+    fn fill(
+        rng: &lambert_sampling::sequence::SplitMix64,
+        isa: lambert_sampling::isa::Isa,
+        first: u64,
+        x: &mut [Self],
+        y: &mut [Self],
+    );
+}
+
+impl Fill for f32 {
+    #[inline(always)]
+    fn fill(
+        rng: &lambert_sampling::sequence::SplitMix64,
+        isa: lambert_sampling::isa::Isa,
+        first: u64,
+        x: &mut [f32],
+        y: &mut [f32],
+    ) {
+        rng.fill_2d_f32_in(isa, first, x, y);
+    }
+}
+
+impl Fill for f64 {
+    #[inline(always)]
+    fn fill(
+        rng: &lambert_sampling::sequence::SplitMix64,
+        _isa: lambert_sampling::isa::Isa,
+        first: u64,
+        x: &mut [f64],
+        y: &mut [f64],
+    ) {
+        rng.fill_2d(first, x, y);
+    }
+}
+
 /// Structure-of-arrays batches with their random numbers, as the estimator
 /// runs them: SplitMix64 fills the coordinate arrays (one counter-based
 /// output per point), the warp writes three direction arrays, all inside
@@ -246,7 +283,7 @@ fn soa_batches(c: &mut Criterion) {
     let n = BATCH as usize;
     let rng = SplitMix64::new(1);
     macro_rules! soa {
-        ($name:expr, $real:ty, $fill:ident, |$ux:ident, $uy:ident, $wx:ident, $wy:ident, $wz:ident| $warp:expr) => {
+        ($name:expr, $real:ty, |$ux:ident, $uy:ident, $wx:ident, $wy:ident, $wz:ident| $warp:expr) => {
             for isa in Isa::available() {
                 g.bench_function(format!("{} {isa}", $name), |b| {
                     let (mut $ux, mut $uy) = (vec![0.0 as $real; n], vec![0.0 as $real; n]);
@@ -263,7 +300,7 @@ fn soa_batches(c: &mut Criterion) {
                         isa.run(
                             #[inline(always)]
                             || {
-                                rng.$fill(first, &mut $ux, &mut $uy);
+                                <$real as Fill>::fill(&rng, isa, first, &mut $ux, &mut $uy);
                                 $warp;
                             },
                         );
@@ -274,47 +311,24 @@ fn soa_batches(c: &mut Criterion) {
             }
         };
     }
-    soa!(
-        "cosine hemisphere f32",
-        f32,
-        fill_2d_f32,
-        |ux, uy, wx, wy, wz| {
-            s32::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-        }
-    );
-    soa!(
-        "cosine hemisphere f64",
-        f64,
-        fill_2d,
-        |ux, uy, wx, wy, wz| {
-            s64::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-        }
-    );
-    soa!(
-        "uniform hemisphere f32",
-        f32,
-        fill_2d_f32,
-        |ux, uy, wx, wy, wz| {
-            s32::sample_uniform_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-        }
-    );
-    soa!(
-        "uniform sphere f32",
-        f32,
-        fill_2d_f32,
-        |ux, uy, wx, wy, wz| {
-            s32::sample_uniform_sphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
-        }
-    );
+    soa!("cosine hemisphere f32", f32, |ux, uy, wx, wy, wz| {
+        s32::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+    });
+    soa!("cosine hemisphere f64", f64, |ux, uy, wx, wy, wz| {
+        s64::sample_cosine_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+    });
+    soa!("uniform hemisphere f32", f32, |ux, uy, wx, wy, wz| {
+        s32::sample_uniform_hemisphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+    });
+    soa!("uniform sphere f32", f32, |ux, uy, wx, wy, wz| {
+        s32::sample_uniform_sphere_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+    });
     let cone32 = s32::UniformCone::from_theta_max(0.3).unwrap();
     let cone64 = s64::UniformCone::from_theta_max(0.3).unwrap();
-    soa!(
-        "uniform cone f32",
-        f32,
-        fill_2d_f32,
-        |ux, uy, wx, wy, wz| { cone32.sample_soa(&ux, &uy, &mut wx, &mut wy, &mut wz) }
-    );
-    soa!("uniform cone f64", f64, fill_2d, |ux, uy, wx, wy, wz| {
+    soa!("uniform cone f32", f32, |ux, uy, wx, wy, wz| {
+        cone32.sample_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
+    });
+    soa!("uniform cone f64", f64, |ux, uy, wx, wy, wz| {
         cone64.sample_soa(&ux, &uy, &mut wx, &mut wy, &mut wz)
     });
     g.bench_function("splitmix64 rng only f32", |b| {
@@ -322,7 +336,7 @@ fn soa_batches(c: &mut Criterion) {
         b.iter(|| {
             Isa::selected().run(
                 #[inline(always)]
-                || rng.fill_2d_f32(0, &mut ux, &mut uy),
+                || rng.fill_2d_f32_in(Isa::selected(), 0, &mut ux, &mut uy),
             );
             black_box((&ux, &uy));
         })

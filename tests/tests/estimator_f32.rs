@@ -271,7 +271,15 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// the digest was 0x4939_44bb_4d82_da89; compared with the CLI on the
 /// same 728 rows, means moved in 2 rows by at most 1.7e-16 relative,
 /// sample variances in 13 by at most 2.9e-15, and standard errors in 208,
-/// the floor-bound ones by the floor's factor 4.2.)
+/// the floor-bound ones by the floor's factor 4.2. Re-pinned when the f32
+/// SplitMix64 fill took its grouped layout (each group of 16 points from
+/// 16 outputs, the first 8 giving x and the last 8 y, so that a vector of
+/// outputs converts without shuffles: 0.91× the time of an f32 light or
+/// MIS estimate): the digest was 0xd110_d128_8832_5ba3. Every independent
+/// f32 sample has new numbers, so the independent rows are new draws:
+/// compared with the CLI on the same 728 rows, the mean coverage of the
+/// 99 % intervals went from 99.42 % to 99.28 % (randomized-QMC points
+/// do not come from this stream).)
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -289,7 +297,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0xd110_d128_8832_5ba3;
+const PINNED: u64 = 0x1bbd_28cf_9647_085b;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

@@ -7,9 +7,10 @@
 //!   computed many lanes at a time with one 64-bit finaliser each, where
 //!   the f64 path's `Pcg64Mcg` stream costs a 128-bit multiply per output
 //!   ([`super::mcg`]): the generator is part of the per-sample cost the
-//!   f32 path exists to cut. Emitter by emitter, output `offset + i` is
-//!   sample i's point (MIS's second point `n` outputs later), the layout
-//!   of the f64 chunk.
+//!   f32 path exists to cut. Emitter by emitter, point `offset + i` of
+//!   the stream's grouped f32 layout ([`SplitMix64::fill_2d_f32`]) is
+//!   sample i's point (MIS's second point `n` points later), with the
+//!   chunk's instruction set ([`SplitMix64::fill_2d_f32_in`]).
 //! - **Randomized-QMC sequences** give their f32 points
 //!   ([`SampleSequence::fill_2d_split_f32`]): the f64 chunk's points
 //!   rounded down to 24 bits, ⌊2²⁴u⌋/2²⁴
@@ -154,6 +155,8 @@ struct StreamBlock<'a> {
     stream32: &'a SplitMix64,
     first: u64,
     n: u64,
+    /// The set the chunk runs in, which the f32 fill's body follows.
+    isa: Isa,
 }
 
 impl Coordinates for StreamBlock<'_> {
@@ -166,7 +169,7 @@ impl Coordinates for StreamBlock<'_> {
     #[inline(always)]
     fn f32s<'a>(&'a self, request: usize, x: &'a mut [f32], y: &'a mut [f32]) -> [&'a [f32]; 2] {
         self.stream32
-            .fill_2d_f32(self.first + request as u64 * self.n, x, y);
+            .fill_2d_f32_in(self.isa, self.first + request as u64 * self.n, x, y);
         [x, y]
     }
 }
@@ -206,6 +209,7 @@ pub fn independent_chunk_f32(
                         stream32: &stream32,
                         first: offsets[k] + start as u64,
                         n: n as u64,
+                        isa,
                     };
                     block(
                         isa, prepared, f32s, receiver, s, start, m, coords, &mut hits,

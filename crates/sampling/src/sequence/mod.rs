@@ -267,12 +267,17 @@ pub fn round_down_24(x: f64) -> f32 {
     ((x * SCALE).floor().clamp(0.0, SCALE - 1.0) * (1.0 / SCALE)) as f32
 }
 
+/// The first multiplier of [`mix64`].
+pub(crate) const MIX_1: u64 = 0xbf58_476d_1ce4_e5b9;
+/// The second multiplier of [`mix64`].
+pub(crate) const MIX_2: u64 = 0x94d0_49bb_1331_11eb;
+
 /// The splitmix64 finaliser (Steele, Lea & Flood 2014; constants of
 /// Stafford's "Mix13"): a bijection of `u64` with full avalanche.
 #[inline]
 pub(crate) fn mix64(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z = (z ^ (z >> 30)).wrapping_mul(MIX_1);
+    z = (z ^ (z >> 27)).wrapping_mul(MIX_2);
     z ^ (z >> 31)
 }
 
