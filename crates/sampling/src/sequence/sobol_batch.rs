@@ -200,6 +200,41 @@ fn finish(scramble: CoordinateScramble, y: &mut [u32]) {
     }
 }
 
+/// The bit reversals R(k) of the indices k < 256, for [`reversed_indices`].
+static REVERSED_BYTES: [u32; 256] = {
+    let mut table = [0u32; 256];
+    let mut k = 0;
+    while k < 256 {
+        table[k] = (k as u32).reverse_bits();
+        k += 1;
+    }
+    table
+};
+
+/// `j[k] = R(base + k)` for a block of at most 256 indices, without
+/// reversing each. Within one window of 256 indices (same bits above the
+/// lowest eight) base + k = w + (base + k − w), two disjoint bit fields,
+/// so R(base + k) = R(w) ⊕ R(base + k − w): one reversal per window and a
+/// table of the 256 low ones. A block spans at most two windows. x86 has
+/// no vector bit reversal (it takes a dozen instructions per lane), and
+/// the index was one of three reversals per point.
+#[inline(always)]
+fn reversed_indices(base: u32, j: &mut [u32]) {
+    const { assert!(BLOCK <= 256) };
+    let low = (base & 0xff) as usize;
+    let window = base & !0xff;
+    let in_first = (256 - low).min(j.len());
+    let (first, second) = j.split_at_mut(in_first);
+    let r = window.reverse_bits();
+    for (j, &t) in first.iter_mut().zip(&REVERSED_BYTES[low..]) {
+        *j = r ^ t;
+    }
+    let r = window.wrapping_add(256).reverse_bits();
+    for (j, &t) in second.iter_mut().zip(&REVERSED_BYTES[..]) {
+        *j = r ^ t;
+    }
+}
+
 /// The two scrambled coordinates of indices `first … first + len − 1`
 /// (which must not pass `2^32 − 1`), handed to `sink(offset, xs, ys)` in
 /// blocks of at most [`BLOCK`], `offset` counting from `first`.
@@ -222,9 +257,7 @@ where
         let base = first.wrapping_add(offset as u32);
         let j = &mut j[..m];
         // j = C(R(i), k) (or R(i) unshuffled): the shuffled index, reversed.
-        for (k, j) in j.iter_mut().enumerate() {
-            *j = base.wrapping_add(k as u32).reverse_bits();
-        }
+        reversed_indices(base, j);
         if let Some(key) = plan.shuffle {
             for j in j.iter_mut() {
                 *j = burley_hash(*j, key);
@@ -246,6 +279,38 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The windowed reversal equals reversing each index: blocks inside
+    /// one window, across two, of every length up to 256, and at the top
+    /// of the index range.
+    #[test]
+    fn reversed_indices_reverse_every_index() {
+        for base in [
+            0u32,
+            1,
+            255,
+            256,
+            300,
+            0x1234_5678,
+            u32::MAX - 255,
+            u32::MAX - 300,
+        ] {
+            for len in [0usize, 1, 7, 200, 255, 256] {
+                if u64::from(base) + len as u64 > 1 << 32 {
+                    continue;
+                }
+                let mut j = vec![0u32; len];
+                reversed_indices(base, &mut j);
+                for (k, &got) in j.iter().enumerate() {
+                    assert_eq!(
+                        got,
+                        base.wrapping_add(k as u32).reverse_bits(),
+                        "{base} + {k}"
+                    );
+                }
+            }
+        }
+    }
 
     /// `A_1 · j` by the subset transform equals the generator matrix's
     /// value on every basis vector (column b of `A_1` is `R(v_{1,31−b})`),
