@@ -290,11 +290,12 @@ impl SplitMix64 {
     }
 
     /// [`fill_2d_f32`](Self::fill_2d_f32) with the instruction set `isa`:
-    /// with [`Isa::Avx512`] whole groups of 16 points take an explicit
-    /// AVX-512 body (eight outputs per vector, whose sixteen 32-bit halves
-    /// convert in place, no narrowing or shuffles); otherwise, and for the
-    /// points before the first whole group and after the last, the scalar
-    /// code, which the compiler vectorises for the set the caller runs in.
+    /// with [`Isa::Avx512`] or [`Isa::Avx2Fma`] whole groups of 16 points
+    /// take an explicit body (`fill_groups_avx512`: eight outputs per
+    /// vector, whose sixteen 32-bit halves convert in place, no narrowing
+    /// or shuffles; `fill_groups_avx2` the same four at a time); with the
+    /// baseline set, and for the points before the first whole group and
+    /// after the last, the scalar code.
     /// The same bits either way (integer steps, and conversions of
     /// integers below 2²⁴ and scalings by 2⁻²⁴ that are exact).
     #[inline(always)]
