@@ -14,8 +14,8 @@
 //! For a constant integrand x, `mean() == x` to within one rounding for any
 //! n up to 2⁵³; a plain running sum drifts by up to n·ε relative.
 //! [`Estimate::from_values`], which summarises a chunk held in memory, sums
-//! non-negative samples with plain adds in windows of 4096 values whose
-//! sums are compensated (within about 260u relative, u = 2⁻⁵³, whatever n
+//! non-negative samples with plain adds in windows of 256 values whose
+//! sums are compensated (within about 17u relative, u = 2⁻⁵³, whatever n
 //! is: `window_sums` gives the bound), samples of which one is negative
 //! with a Neumaier step per value, and equal samples exactly.
 //!
@@ -327,10 +327,11 @@ impl Estimate {
     /// The first sums the samples and finds their count of non-zero
     /// values, their minimum and their maximum; the second sums
     /// M₂ = Σ(x − m)² about the mean. Both sum in [`SUM_LANES`] lanes
-    /// (value i in lane i mod 16) with plain adds in windows of 4096 values
-    /// whose lane sums are compensated, which keeps non-negative terms
-    /// within about 260u relative (u = 2⁻⁵³; `window_sums` derives the
-    /// bound). Samples of which one is negative are summed with a
+    /// (value i in lane i mod 16) with plain adds in windows whose lane
+    /// sums are compensated: windows of 256 values for the samples, which
+    /// keeps non-negative ones within about 17u relative (u = 2⁻⁵³), and
+    /// of 4096 for M₂, within about 260u (`window_sums` derives the
+    /// bounds). Samples of which one is negative are summed with a
     /// compensated (Neumaier) step per value instead, since their sum may
     /// cancel; samples that are all equal give the exact block of
     /// [`push_n`](Estimate::push_n) (mean x, M₂ = 0), so a zero-variance
