@@ -326,7 +326,7 @@ impl Estimate {
     /// The estimate of a block of samples held in memory, by two passes.
     /// The first sums the samples and finds their count of non-zero
     /// values, their minimum and their maximum; the second sums
-    /// M₂ = Σ(x − m)² about the mean. Both sum in [`SUM_LANES`] lanes
+    /// M₂ = Σ(x − m)² about the mean. Both sum in 16 lanes
     /// (value i in lane i mod 16) with plain adds in windows whose lane
     /// sums are compensated: windows of 256 values for the samples, which
     /// keeps non-negative ones within about 17u relative (u = 2⁻⁵³), and
