@@ -35,6 +35,7 @@ use lambert_sampling::f32::{
 use lambert_sampling::isa::Isa;
 
 use super::cone_mis::ConeMisF32;
+use super::cone_window::CosineWindowF32;
 use super::prepared_f32::{Area, Light, PreparedEmitterF32, Projected, Shape};
 use super::{Heuristic, PartHits, Store, Technique};
 
@@ -81,28 +82,51 @@ fn accumulate<const P: usize>(
     parts: impl Fn(Vec2, Vec2) -> [f32; P],
 ) -> PartHits {
     const { assert!(P == 1 || P == 2) };
+    accumulate_spans(
+        radiance,
+        block,
+        out,
+        #[inline(always)]
+        |[ux, uy, vx, vy], sums| {
+            let mut counts = [0u32; 2];
+            // An index loop: every slice here has length `sums.len()`, which
+            // the compiler relates to `k < len` (it does not to a slice
+            // iterator's pointer range).
+            for k in 0..sums.len() {
+                let g = parts(Vec2::new(ux[k], uy[k]), Vec2::new(vx[k], vy[k]));
+                counts[0] += u32::from(g[0] != 0.0);
+                sums[k] = if P == 1 {
+                    g[0]
+                } else {
+                    counts[1] += u32::from(g[P - 1] != 0.0);
+                    g[0] + g[P - 1]
+                };
+            }
+            counts
+        },
+    )
+}
+
+/// [`accumulate`]'s spans and second loop around a first loop given whole:
+/// `span([ux, uy, vx, vy], sums)` writes each sample's f32 sum of parts to
+/// `sums` (every slice of one length, at most [`SPAN`]) and returns how
+/// many samples had each part non-zero.
+#[inline(always)]
+fn accumulate_spans(
+    radiance: f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+    mut span: impl FnMut([&[f32]; 4], &mut [f32]) -> [u32; 2],
+) -> PartHits {
     let mut hits = [0u64; 2];
     let mut sums = [0.0f32; SPAN];
-    for (span, out) in out.chunks_mut(SPAN).enumerate() {
+    for (index, out) in out.chunks_mut(SPAN).enumerate() {
         let len = out.len();
-        let at = span * SPAN..span * SPAN + len;
+        let at = index * SPAN..index * SPAN + len;
         let (ux, uy) = (&block.ux[at.clone()], &block.uy[at.clone()]);
         let (vx, vy) = (&block.vx[at.clone()], &block.vy[at]);
         let sums = &mut sums[..len];
-        let mut counts = [0u32; 2];
-        // An index loop: every slice here has length `len`, which the
-        // compiler relates to `k < len` (it does not to a slice iterator's
-        // pointer range).
-        for k in 0..len {
-            let g = parts(Vec2::new(ux[k], uy[k]), Vec2::new(vx[k], vy[k]));
-            counts[0] += u32::from(g[0] != 0.0);
-            sums[k] = if P == 1 {
-                g[0]
-            } else {
-                counts[1] += u32::from(g[P - 1] != 0.0);
-                g[0] + g[P - 1]
-            };
-        }
+        let counts = span([ux, uy, vx, vy], sums);
         match block.store {
             Store::Add => {
                 for (o, &g) in out.iter_mut().zip(sums.iter()) {
@@ -307,10 +331,15 @@ fn disk_light_batch(
 }
 
 /// MIS on a sphere or sky cap ([`ConeMisF32`]): both halves in the frames
-/// where they are cheapest, counted apart.
+/// where they are cheapest, counted apart. Samples go in groups of
+/// [`MIS_GROUP`]: where no cosine-sampled direction of a group may see the
+/// cone ([`CosineWindowF32::may_see`]), the cosine halves are exactly 0
+/// and only the light halves are computed, as in the f64 kernel (the
+/// values do not depend on the grouping).
 #[inline(always)]
 fn cone_mis_batch(
     cone: &ConeMisF32,
+    window: &CosineWindowF32,
     h: Heuristic,
     radiance: f64,
     block: &Block<'_>,
@@ -321,17 +350,63 @@ fn cone_mis_batch(
         // sample.
         return accumulate(radiance, block, out, |_, _| [0.0, 0.0]);
     }
-    accumulate(
+    // Local copies stay in registers.
+    let (cone, window) = (*cone, *window);
+    accumulate_spans(
         radiance,
         block,
         out,
         #[inline(always)]
-        |u, v| {
-            let (cosine, light) = (cone.cosine_value(h, u), cone.light_value(h, v));
-            [cosine, light]
+        |[ux, uy, vx, vy], sums| {
+            // Counted per lane and added up once per span, not per group.
+            let mut lane_hits = [[0u32; MIS_GROUP]; 2];
+            let (groups, _) = sums.as_chunks_mut::<MIS_GROUP>();
+            let whole = groups.len() * MIS_GROUP;
+            fn lanes(c: &[f32], whole: usize) -> &[[f32; MIS_GROUP]] {
+                c[..whole].as_chunks::<MIS_GROUP>().0
+            }
+            let (gux, guy) = (lanes(ux, whole), lanes(uy, whole));
+            let (gvx, gvy) = (lanes(vx, whole), lanes(vy, whole));
+            let coordinates = gux.iter().zip(guy).zip(gvx.iter().zip(gvy));
+            for (sums, ((ux, uy), (vx, vy))) in groups.iter_mut().zip(coordinates) {
+                let mut may_see = false;
+                for k in 0..MIS_GROUP {
+                    may_see |= window.may_see(Vec2::new(ux[k], uy[k]));
+                }
+                // One branch per group, around whole loops.
+                if may_see {
+                    for k in 0..MIS_GROUP {
+                        let light = cone.light_value(h, Vec2::new(vx[k], vy[k]));
+                        let cosine = cone.cosine_value(h, Vec2::new(ux[k], uy[k]));
+                        lane_hits[0][k] += u32::from(cosine != 0.0);
+                        lane_hits[1][k] += u32::from(light != 0.0);
+                        sums[k] = cosine + light;
+                    }
+                } else {
+                    for k in 0..MIS_GROUP {
+                        let light = cone.light_value(h, Vec2::new(vx[k], vy[k]));
+                        lane_hits[1][k] += u32::from(light != 0.0);
+                        // The cosine half's exact 0, added as above.
+                        sums[k] = 0.0 + light;
+                    }
+                }
+            }
+            let mut counts = lane_hits.map(|lanes| lanes.iter().sum());
+            for k in whole..sums.len() {
+                let (u, v) = (Vec2::new(ux[k], uy[k]), Vec2::new(vx[k], vy[k]));
+                let (cosine, light) = (cone.cosine_value(h, u), cone.light_value(h, v));
+                counts[0] += u32::from(cosine != 0.0);
+                counts[1] += u32::from(light != 0.0);
+                sums[k] = cosine + light;
+            }
+            counts
         },
     )
 }
+
+/// Samples per group of [`cone_mis_batch`]'s window test: one AVX-512
+/// vector of f32 lanes, two of AVX2's.
+const MIS_GROUP: usize = 16;
 
 /// The closure itself, so that `#[inline(always)]` may sit on it.
 #[inline(always)]
@@ -754,20 +829,16 @@ impl PreparedEmitterF32 {
         out: &mut [f64],
     ) -> PartHits {
         let none = (Vec3::Z, 0.0);
-        let cone = match &self.light {
-            Light::Cap(frame, cone) => Some(ConeMisF32::new(1.0, frame, cone, &self.frame)),
-            Light::Sphere(s) => Some(ConeMisF32::new(1.0, s.frame(), s.cone(), &self.frame)),
-            _ => None,
-        };
-        if let (Some(cone), true) = (cone, self.lit) {
+        if let Some((cone, window)) = &self.cone_mis {
             // One loop per heuristic, its choice made at compile time
             // rather than tested in the loop (as in the f64 kernels).
+            let radiance = self.radiance;
             return match h {
                 Heuristic::Balance => {
-                    cone_mis_batch(&cone, Heuristic::Balance, self.radiance, block, out)
+                    cone_mis_batch(cone, window, Heuristic::Balance, radiance, block, out)
                 }
                 Heuristic::Power => {
-                    cone_mis_batch(&cone, Heuristic::Power, self.radiance, block, out)
+                    cone_mis_batch(cone, window, Heuristic::Power, radiance, block, out)
                 }
             };
         }

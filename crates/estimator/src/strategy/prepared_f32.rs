@@ -30,6 +30,8 @@ use lambert_sampling::f32::{
 };
 use std::fmt;
 
+use super::cone_mis::ConeMisF32;
+use super::cone_window::CosineWindowF32;
 use super::{ControlVariate, EmitterLight, EmitterProjected, PreparedEmitter, Technique};
 
 /// The largest bound on the relative error of an emitter's f32 estimate
@@ -192,6 +194,11 @@ pub struct PreparedEmitterF32 {
     pub(super) projected: Projected,
     /// The control variate's closed form, when every sample is that value.
     pub(super) constant: Option<f64>,
+    /// MIS on a sphere or sky cap seen from its lit side: the two halves in
+    /// their own frames ([`ConeMisF32`], radiance 1) and the window of
+    /// cosine samples that may see the cone, built once here (the window
+    /// costs inverse sines and tangents).
+    pub(super) cone_mis: Option<(ConeMisF32, CosineWindowF32)>,
     error_bound: f64,
 }
 
@@ -277,6 +284,16 @@ impl PreparedEmitterF32 {
         if !(relative <= F32_MAX_RELATIVE_ERROR) {
             return Err(FallbackReason::ErrorBound { relative });
         }
+        let cone_mis = match (draws, &light, lit) {
+            (Some(Technique::Mis(_)), Light::Cap(cone_frame, cone), true) => {
+                Some(ConeMisF32::new(1.0, cone_frame, cone, &frame))
+            }
+            (Some(Technique::Mis(_)), Light::Sphere(s), true) => {
+                Some(ConeMisF32::new(1.0, s.frame(), s.cone(), &frame))
+            }
+            _ => None,
+        }
+        .map(|cone| (cone, cone.window()));
         Ok(PreparedEmitterF32 {
             technique: match draws {
                 Some(t) if technique == Technique::ControlVariate => t,
@@ -289,6 +306,7 @@ impl PreparedEmitterF32 {
             lit,
             light,
             area,
+            cone_mis,
             projected,
             constant: control,
             error_bound,
