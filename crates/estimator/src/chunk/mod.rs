@@ -37,7 +37,7 @@ pub use mcg::McgStream;
 pub use precision_f32::{independent_chunk_f32, sequence_chunk_f32};
 
 use crate::statistics::Estimate;
-use crate::strategy::{PartHits, PreparedEmitter};
+use crate::strategy::{PartHits, PreparedEmitter, Store};
 
 /// Samples evaluated together: 512 samples' coordinates (4 arrays of f64,
 /// 16 KB) and values stay in a 48 KB first-level cache.
@@ -71,19 +71,36 @@ thread_local! {
     static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
 }
 
-/// Runs `f` with this thread's scratch buffers (values sized `n` and zeroed,
-/// coordinate blocks sized [`BLOCK`]).
-fn with_scratch<R>(n: usize, f: impl FnOnce(&mut Scratch) -> R) -> R {
+/// Runs `f` with this thread's scratch buffers: values sized `n`, zeroed
+/// unless there are emitters (the first one's kernel overwrites each
+/// block's values, [`Store::Overwrite`], so they may hold whatever the
+/// previous chunk left), coordinate blocks sized [`BLOCK`].
+fn with_scratch<R>(n: usize, emitters: usize, f: impl FnOnce(&mut Scratch) -> R) -> R {
     SCRATCH.with(|cell| {
         let mut guard = cell.borrow_mut();
         let s = &mut *guard;
-        s.values.clear();
+        if emitters > 0 {
+            // Only slots past the previous length are written here.
+            s.values.truncate(n);
+        } else {
+            s.values.clear();
+        }
         s.values.resize(n, 0.0);
         for v in [&mut s.ux, &mut s.uy, &mut s.vx, &mut s.vy] {
             v.resize(BLOCK, 0.0);
         }
         f(s)
     })
+}
+
+/// How emitter `k` of a chunk stores its values: the first overwrites
+/// the block ([`with_scratch`] leaves it unzeroed), the others add.
+fn first_overwrites(k: usize) -> Store {
+    if k == 0 {
+        Store::Overwrite
+    } else {
+        Store::Add
+    }
 }
 
 /// One chunk of `n` independent samples from the `Pcg64Mcg` stream seeded
@@ -96,7 +113,7 @@ pub fn independent_chunk(
     isa: Isa,
 ) -> ChunkResult {
     let stream = McgStream::seed_from_u64(chunk_seed);
-    with_scratch(n, |s| {
+    with_scratch(n, prepared.len(), |s| {
         isa.run(
             #[inline(always)]
             || {
@@ -105,7 +122,7 @@ pub fn independent_chunk(
                 while start < n {
                     let m = BLOCK.min(n - start);
                     let mut offset = 0u64;
-                    for (p, h) in prepared.iter().zip(hits.iter_mut()) {
+                    for (k, (p, h)) in prepared.iter().zip(hits.iter_mut()).enumerate() {
                         let first = offset + start as u64;
                         stream.fill_2d(first, &mut s.ux[..m], &mut s.uy[..m]);
                         if p.technique.dimensions() > 1 {
@@ -120,6 +137,7 @@ pub fn independent_chunk(
                             &s.vx[..m],
                             &s.vy[..m],
                             &mut s.values[start..start + m],
+                            first_overwrites(k),
                         );
                         h[0] += got[0];
                         h[1] += got[1];
@@ -149,7 +167,7 @@ pub fn sequence_chunk<S: SampleSequence>(
 ) -> ChunkResult {
     let n = (range.end - range.start) as usize;
     let dims: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
-    with_scratch(n, |s| {
+    with_scratch(n, prepared.len(), |s| {
         // Every element is written by the fills below: no zeroing per chunk.
         s.px.resize(n * dims, 0.0);
         s.py.resize(n * dims, 0.0);
@@ -168,7 +186,7 @@ pub fn sequence_chunk<S: SampleSequence>(
                 while start < n {
                     let m = BLOCK.min(n - start);
                     let mut d = 0;
-                    for (p, h) in prepared.iter().zip(hits.iter_mut()) {
+                    for (k, (p, h)) in prepared.iter().zip(hits.iter_mut()).enumerate() {
                         let at = |request: usize| request * n + start..request * n + start + m;
                         // MIS's second point is request d + 1; other
                         // techniques read only their first.
@@ -185,6 +203,7 @@ pub fn sequence_chunk<S: SampleSequence>(
                             &s.px[second.clone()],
                             &s.py[second],
                             &mut s.values[start..start + m],
+                            first_overwrites(k),
                         );
                         h[0] += got[0];
                         h[1] += got[1];
@@ -323,6 +342,58 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    /// Sets this thread's f64 values buffer to `values`.
+    fn leave_in_buffer(values: Vec<f64>) {
+        SCRATCH.with(|cell| cell.borrow_mut().values = values);
+    }
+
+    /// The first emitter overwrites each block's values ([`first_overwrites`]),
+    /// so a chunk gives the bits of one on a zeroed buffer whatever the
+    /// buffer held: NaNs (an unwritten slot would carry one into the
+    /// estimate as a non-finite sample) or a longer chunk's values;
+    /// independent and Sobol chunks, every built-in scene × every strategy
+    /// and `auto` × every instruction set, at a chunk length that ends
+    /// inside a block. Negative control: a kernel that adds to the
+    /// poisoned buffer leaves NaNs.
+    #[test]
+    fn overwriting_first_emitter_ignores_what_the_buffer_held() {
+        let n = BLOCK + 37;
+        let sobol = Sobol::new(7);
+        for named in builtin_scenes() {
+            let (scene, receiver) = (&named.scene, &named.scene.receiver);
+            for strategy in std::iter::once(Strategy::Auto).chain(Strategy::ALL) {
+                let (prepared, _) = prepare(scene, strategy);
+                for isa in Isa::available() {
+                    let runs: [&dyn Fn() -> ChunkResult; 2] = [
+                        &|| independent_chunk(&prepared, receiver, 7, n, isa),
+                        &|| sequence_chunk(&prepared, receiver, &sobol, 64..64 + n as u64, isa),
+                    ];
+                    for run in runs {
+                        leave_in_buffer(Vec::new());
+                        let fresh = run();
+                        assert_eq!(fresh.estimate.non_finite(), 0, "{}", named.name);
+                        for stale in [vec![f64::NAN; 2 * n], vec![1e300; n + 1]] {
+                            leave_in_buffer(stale);
+                            let again = run();
+                            let case = format!("{} {strategy} {isa}", named.name);
+                            assert_eq!(again.estimate, fresh.estimate, "{case}");
+                            assert_eq!(again.hits, fresh.hits, "{case}");
+                        }
+                    }
+                }
+            }
+        }
+        let scene = &builtin_scenes()[0].scene;
+        let (prepared, _) = prepare(scene, Strategy::Light);
+        let u = vec![0.25; 64];
+        for (store, finite) in [(Store::Overwrite, true), (Store::Add, false)] {
+            let mut out = vec![f64::NAN; 64];
+            let isa = Isa::selected();
+            prepared[0].add_batch_in(isa, &scene.receiver, &u, &u, &u, &u, &mut out, store);
+            assert_eq!(out.iter().all(|v| v.is_finite()), finite, "{store:?}");
         }
     }
 }

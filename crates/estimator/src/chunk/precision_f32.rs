@@ -56,11 +56,11 @@ thread_local! {
     static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
 }
 
-/// Whether the first emitter's f32 kernel overwrites each block's values
+/// Whether the first emitter's kernel overwrites each block's values
 /// ([`Store::Overwrite`]), so that the chunk's values need not be zeroed
-/// first: it does when it runs in f32 (an emitter in f64 adds).
+/// first: it does whenever there is one (in f32 or f64).
 fn first_overwrites(f32s: &[Option<PreparedEmitterF32>]) -> bool {
-    matches!(f32s.first(), Some(Some(_)))
+    !f32s.is_empty()
 }
 
 /// Runs `f` with this thread's f32 scratch: values sized `n`, zeroed
@@ -120,6 +120,7 @@ fn block<C: Coordinates>(
         let c = coords(k);
         let mis = p.technique.dimensions() > 1;
         let values = &mut s.values[start..start + m];
+        let store = if k == 0 { Store::Overwrite } else { Store::Add };
         let got = match &f32s[k] {
             Some(q) => {
                 let [ux, uy, vx, vy] = &mut s.u32s;
@@ -129,7 +130,6 @@ fn block<C: Coordinates>(
                 } else {
                     [&vx[..m], &vy[..m]]
                 };
-                let store = if k == 0 { Store::Overwrite } else { Store::Add };
                 q.add_batch_in(isa, ux, uy, vx, vy, values, store)
             }
             None => {
@@ -140,7 +140,7 @@ fn block<C: Coordinates>(
                 } else {
                     [&vx[..m], &vy[..m]]
                 };
-                p.add_batch_in(isa, receiver, ux, uy, vx, vy, values)
+                p.add_batch_in(isa, receiver, ux, uy, vx, vy, values, store)
             }
         };
         h[0] += got[0];

@@ -373,7 +373,9 @@ impl Estimate {
         }
         if scan.min == scan.max {
             let mut constant = Estimate::new();
-            constant.push_n(scan.min, n);
+            // + 0: a chunk of zeros, some of them −0, has the mean +0
+            // whichever zero the scan kept.
+            constant.push_n(scan.min + 0.0, n);
             constant.non_finite = non_finite;
             return constant;
         }

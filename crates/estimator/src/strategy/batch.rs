@@ -36,7 +36,7 @@ use super::emitter_light::{
 };
 use super::{
     EmitterArea, EmitterLight, EmitterProjected, Heuristic, LightDirection, PartHits,
-    PreparedEmitter, Technique,
+    PreparedEmitter, Store, Technique,
 };
 
 impl PreparedEmitter {
@@ -61,20 +61,23 @@ impl PreparedEmitter {
         vx: &[f64],
         vy: &[f64],
         out: &mut [f64],
+        store: Store,
     ) -> PartHits {
         isa.run(
             #[inline(always)]
-            || self.add_batch(receiver, ux, uy, vx, vy, out),
+            || self.add_batch(receiver, ux, uy, vx, vy, out, store),
         )
     }
 
-    /// Adds this emitter's estimate for samples `i` of a block to `out[i]`:
+    /// Adds this emitter's estimate for samples `i` of a block to `out[i]`
+    /// (or stores it there, with [`Store::Overwrite`]):
     /// `out[i] += F((ux[i], uy[i]), (vx[i], vy[i]))`, the value of
     /// [`evaluate_u`](Self::evaluate_u) to the bit (the light shortcut for
     /// spheres aside, module docs), over the shortest of the slices (`vx`,
     /// `vy` are read only by MIS). Returns how many samples had a non-zero
     /// value in each part.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     pub fn add_batch(
         &self,
         receiver: &Receiver,
@@ -83,6 +86,7 @@ impl PreparedEmitter {
         vx: &[f64],
         vy: &[f64],
         out: &mut [f64],
+        store: Store,
     ) -> PartHits {
         let p = receiver.point;
         let mis = matches!(self.technique, Technique::Mis(_));
@@ -95,6 +99,7 @@ impl PreparedEmitter {
             uy: &uy[..n],
             vx: if mis { &vx[..n] } else { &ux[..n] },
             vy: if mis { &vy[..n] } else { &uy[..n] },
+            store,
         };
         let out = &mut out[..n];
         if let Technique::Mis(h) = self.technique {
@@ -294,11 +299,13 @@ struct Block<'a> {
     uy: &'a [f64],
     vx: &'a [f64],
     vy: &'a [f64],
+    /// How the values are stored in `out` ([`Store`]).
+    store: Store,
 }
 
 impl Block<'_> {
-    /// Calls `f(i, u_i, v_i, &mut out[i])` for every sample of the block,
-    /// in order.
+    /// Stores `f(i, u_i, v_i)` in `out[i]` ([`Store`]) for every sample
+    /// of the block, in order, with one loop per way of storing.
     ///
     /// An index loop over slices cut to `out`'s length, so that the
     /// compiler sees every index in bounds. Indexing the block's arrays
@@ -307,24 +314,31 @@ impl Block<'_> {
     /// of samples in scalar code (measured on the f32 kernels: 32 of every
     /// 256 samples, half the time).
     #[inline(always)]
-    fn each(&self, out: &mut [f64], mut f: impl FnMut(usize, DVec2, DVec2, &mut f64)) {
+    fn each(&self, out: &mut [f64], mut f: impl FnMut(usize, DVec2, DVec2) -> f64) {
         let n = out.len();
         let (ux, uy) = (&self.ux[..n], &self.uy[..n]);
         let (vx, vy) = (&self.vx[..n], &self.vy[..n]);
-        for i in 0..n {
-            f(
-                i,
-                DVec2::new(ux[i], uy[i]),
-                DVec2::new(vx[i], vy[i]),
-                &mut out[i],
-            );
+        // The two loops written out: a shared closure for the value was
+        // not inlined, and ran outside the caller's instruction set.
+        match self.store {
+            Store::Add => {
+                for i in 0..n {
+                    out[i] += f(i, DVec2::new(ux[i], uy[i]), DVec2::new(vx[i], vy[i]));
+                }
+            }
+            Store::Overwrite => {
+                for i in 0..n {
+                    out[i] = f(i, DVec2::new(ux[i], uy[i]), DVec2::new(vx[i], vy[i]));
+                }
+            }
         }
     }
 }
 
 impl Block<'_> {
-    /// Calls `group(ux, uy, vx, vy, out)` on every whole group of
-    /// [`MIS_GROUP`] samples in order (arrays of fixed length, so that the
+    /// Stores `group(ux, uy, vx, vy)`, the values of a whole group of
+    /// [`MIS_GROUP`] samples, in the group's slots of `out` ([`Store`]),
+    /// for every whole group in order (arrays of fixed length, so that the
     /// compiler sees one vector), and returns the index after the last
     /// whole group (the caller handles the rest).
     #[inline(always)]
@@ -336,8 +350,7 @@ impl Block<'_> {
             &[f64; MIS_GROUP],
             &[f64; MIS_GROUP],
             &[f64; MIS_GROUP],
-            &mut [f64; MIS_GROUP],
-        ),
+        ) -> [f64; MIS_GROUP],
     ) -> usize {
         let n = out.len();
         let whole = n / MIS_GROUP * MIS_GROUP;
@@ -347,7 +360,10 @@ impl Block<'_> {
         let groups = groups.zip(vx.as_chunks().0.iter().zip(vy.as_chunks().0));
         let outs = out[..whole].as_chunks_mut::<MIS_GROUP>().0;
         for (((ux, uy), (vx, vy)), out) in groups.zip(outs) {
-            group(ux, uy, vx, vy, out);
+            let values = group(ux, uy, vx, vy);
+            for (o, v) in out.iter_mut().zip(values) {
+                self.store.put(o, v);
+            }
         }
         whole
     }
@@ -383,11 +399,11 @@ fn sphere_cone_batch(
     block.each(
         out,
         #[inline(always)]
-        |_, u, _, o| {
+        |_, u, _| {
             let w = cone.sample(u);
             let f = scale * n_local.dot(w).max(0.0);
             hits += u64::from(f != 0.0);
-            *o += f;
+            f
         },
     );
     [hits, 0]
@@ -411,7 +427,7 @@ fn cone_mis_batch(
     let mut hits = [0u64; 2];
     if !cone.is_drawn() {
         // Both halves are 0 (`ConeMis::parts`); decided once, not per sample.
-        out.iter_mut().for_each(|o| *o += 0.0);
+        out.iter_mut().for_each(|o| block.store.put(o, 0.0));
         return hits;
     }
     // Hits counted per lane and added up at the end: counted into one
@@ -421,7 +437,7 @@ fn cone_mis_batch(
     let whole = block.each_group(
         out,
         #[inline(always)]
-        |ux, uy, vx, vy, out| {
+        |ux, uy, vx, vy| {
             // A loop, not `fold`: the fold was compiled apart, out of the
             // kernel's instruction set.
             let mut may_see = false;
@@ -430,22 +446,24 @@ fn cone_mis_batch(
             }
             // One branch per group, around whole loops: a select per lane
             // would compute the cosine halves everywhere.
+            let mut values = [0.0; MIS_GROUP];
             if may_see {
                 for k in 0..MIS_GROUP {
                     let light = cone.light_value(h, DVec2::new(vx[k], vy[k]));
                     let cosine = cone.cosine_value(h, DVec2::new(ux[k], uy[k]));
                     lane_hits[0][k] += u64::from(cosine != 0.0);
                     lane_hits[1][k] += u64::from(light != 0.0);
-                    out[k] += cosine + light;
+                    values[k] = cosine + light;
                 }
             } else {
                 for k in 0..MIS_GROUP {
                     let light = cone.light_value(h, DVec2::new(vx[k], vy[k]));
                     lane_hits[1][k] += u64::from(light != 0.0);
                     // The cosine half's exact 0, added as above.
-                    out[k] += 0.0 + light;
+                    values[k] = 0.0 + light;
                 }
             }
+            values
         },
     );
     hits = lane_hits.map(|lanes| lanes.iter().sum());
@@ -454,7 +472,7 @@ fn cone_mis_batch(
         let (cosine, light) = (cone.cosine_value(h, u), cone.light_value(h, v));
         hits[0] += u64::from(cosine != 0.0);
         hits[1] += u64::from(light != 0.0);
-        *o += cosine + light;
+        block.store.put(o, cosine + light);
     }
     hits
 }
@@ -584,6 +602,7 @@ fn disk_table_batch(
             uy: &block.uy[range.clone()],
             vx: &block.vx[range.clone()],
             vy: &block.vy[range.clone()],
+            store: block.store,
         };
         let got = sampled_batch(
             emitter,
@@ -759,10 +778,10 @@ fn single(block: &Block<'_>, out: &mut [f64], f: impl Fn(usize, DVec2) -> f64) -
     block.each(
         out,
         #[inline(always)]
-        |i, u, _, o| {
+        |i, u, _| {
             let v = f(i, u);
             hits += u64::from(v != 0.0);
-            *o += v;
+            v
         },
     );
     [hits, 0]
@@ -1030,7 +1049,7 @@ fn mis_batch(
     block.each(
         out,
         #[inline(always)]
-        |i, u, v, o| {
+        |i, u, v| {
             let local = sample_cosine_hemisphere(u);
             let w = frame.from_local(local);
             let p_cos = pdf_cosine_hemisphere(local);
@@ -1060,7 +1079,7 @@ fn mis_batch(
             let light = if drawn { weighted } else { 0.0 };
             hits[0] += u64::from(cosine != 0.0);
             hits[1] += u64::from(light != 0.0);
-            *o += cosine + light;
+            cosine + light
         },
     );
     hits

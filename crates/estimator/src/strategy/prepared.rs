@@ -14,8 +14,8 @@ use lambert_sampling::sequence::SampleSequence;
 use super::cone_mis::ConeMis;
 use super::cone_window::CosineWindow;
 use super::{
-    ControlVariate, EmitterArea, EmitterLight, EmitterProjected, PartBound, Strategy, Technique,
-    TechniqueFallback,
+    ControlVariate, EmitterArea, EmitterLight, EmitterProjected, PartBound, Store, Strategy,
+    Technique, TechniqueFallback,
 };
 use lambert_geometry::f64::Frame;
 
@@ -358,6 +358,7 @@ impl PreparedEmitter {
                 &vx[..m],
                 &vy[..m],
                 &mut out[start..start + m],
+                Store::Add,
             );
             hits[0] += h[0];
             hits[1] += h[1];
