@@ -27,6 +27,7 @@ mod area;
 mod area_light;
 mod carlson;
 mod cone;
+mod cone_cosine;
 mod direction_sample;
 mod discrete;
 mod disk;
@@ -69,6 +70,7 @@ macro_rules! public_api {
             DiskAreaSampler, PolygonAreaSampler, SphereAreaSampler, TriangleAreaSampler,
         };
         pub use crate::cone::$p::UniformCone;
+        pub use crate::cone_cosine::$p::ConeCosine;
         pub use crate::direction_sample::$p::DirectionSample;
         pub use crate::discrete::$p::{pick_by_cumulative, rescale_within};
         pub use crate::disk::$p::{
@@ -104,7 +106,7 @@ macro_rules! public_api {
         pub use crate::spherical_triangle::$p::SphericalTriangle;
         pub use crate::triangle::$p::UniformTriangle;
         pub use crate::triangle_light::$p::{TriangleLightSampler, TriangleSolidAngle};
-        pub use crate::trig::$p::{sin, sin_cos, sin_cos_2pi, sin_cos_quarter};
+        pub use crate::trig::$p::{cos_2pi, sin, sin_cos, sin_cos_2pi, sin_cos_quarter};
     };
 }
 

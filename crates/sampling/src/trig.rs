@@ -1,7 +1,7 @@
 //! sin and cos of 2πu for u ∈ [0, 1], with exact range reduction, and of
 //! moderate angles x (|x| ≤ 1000) by a three-part Cody–Waite reduction.
 
-/// The Taylor coefficients each precision uses (see the module docs).
+/// The polynomial coefficients each precision uses (see the module docs).
 mod taylor {
     /// f64: to x¹⁶ for sin x / x and cos x.
     pub(super) mod f64 {
@@ -38,6 +38,25 @@ mod taylor {
             -1.0 / 87178291200.0,
             1.0 / 20922789888000.0,
         ];
+        /// sin y / y ≈ P(y²) on |y| ≤ π/2, [`cos_2pi`]'s sine: the
+        /// coefficients of the degree-8 Chebyshev fit of sin √x / √x on
+        /// x ∈ [0, (π/2)²] (near-minimax; mpmath's `chebyfit` at 50 digits,
+        /// rounded to f64). Its error, 2.1e-19, is far below half an ulp
+        /// of the value, as the Taylor series' would be only from y²⁰ on
+        /// (two more terms).
+        ///
+        /// [`cos_2pi`]: crate::f64::cos_2pi
+        pub const SIN_HALF_PI: [Real; 9] = [
+            1.0,
+            -0.166_666_666_666_666_66,
+            0.008_333_333_333_333_186,
+            -0.000_198_412_698_412_086_76,
+            2.755_731_921_122_960_6e-6,
+            -2.505_210_689_056_952e-8,
+            1.605_894_087_848_656e-10,
+            -7.643_026_557_971_632e-13,
+            2.721_574_942_298_344_3e-15,
+        ];
     }
     /// f32: to x⁸ for sin x / x, x¹⁰ for cos x.
     pub(super) mod f32 {
@@ -58,12 +77,26 @@ mod taylor {
             1.0 / 40320.0,
             -1.0 / 3628800.0,
         ];
+        /// sin y / y ≈ P(y²) on |y| ≤ π/2, [`cos_2pi`]'s sine: the
+        /// coefficients of the degree-4 Chebyshev fit of sin √x / √x on
+        /// x ∈ [0, (π/2)²] (near-minimax; mpmath's `chebyfit` at 50 digits,
+        /// rounded to f32). Its error, 4.3e-9, is below a tenth of an ulp
+        /// of the value; the Taylor series needs y¹² (two more terms).
+        ///
+        /// [`cos_2pi`]: crate::f32::cos_2pi
+        pub const SIN_HALF_PI: [Real; 5] = [
+            1.0,
+            -0.166_666_58,
+            0.008_333_05,
+            -0.000_198_090_17,
+            2.605_107_7e-6,
+        ];
     }
 }
 
 macro_rules! trig_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
-        use super::taylor::$p::{COS_TAYLOR, HALF_PI_PARTS, SIN_TAYLOR};
+        use super::taylor::$p::{COS_TAYLOR, HALF_PI_PARTS, SIN_HALF_PI, SIN_TAYLOR};
         use lambert_geometry::precision::$p::{Real, PI};
 
         /// (sin x, cos x) for x ∈ [−π/4, π/4], by Estrin evaluation of the
@@ -186,6 +219,38 @@ macro_rules! trig_impl {
             }
         }
 
+        /// cos 2πu for u ∈ [0, 1], alone: one polynomial where
+        /// [`sin_cos_2pi`] evaluates two.
+        ///
+        /// cos 2πu is even and of period 1, so it equals cos 2πt with
+        /// t = min(u, 1 − u) ∈ [0, ½], and cos 2πt = sin(2π(¼ − t)). Both
+        /// steps are exact for the u the samplers draw: 1 − u is exact for
+        /// u ≥ ½ (Sterbenz), ¼ − t is exact for t ≥ ⅛ (Sterbenz again) and
+        /// for any t on a 2⁻³² grid, and otherwise rounds where
+        /// cos 2πu > 0.7, by at most half an ulp of ¼. y = 2π(¼ − t) ∈
+        /// [−π/2, π/2] then carries one rounding, and sin y is y times a
+        /// near-minimax polynomial in y² (9 terms in f64, 5 in f32) whose
+        /// error is below half an ulp on that interval. So the result is
+        /// within about an ulp of 1 of cos 2πu, and within a few ulps of
+        /// itself near the zeros u = ¼, ¾ (where y is small and the
+        /// polynomial relative).
+        ///
+        /// The cone's [`ConeCosine`](crate::f64::ConeCosine) needs only
+        /// this cosine: it costs about half of [`sin_cos_2pi`].
+        ///
+        /// ```
+        #[doc = concat!("use lambert_sampling::", stringify!($p), "::cos_2pi;")]
+        /// assert_eq!(cos_2pi(0.25), 0.0);
+        /// assert_eq!(cos_2pi(0.5), -cos_2pi(0.0));
+        #[doc = concat!("assert!((cos_2pi(0.1) - (0.2 * std::", stringify!($p), "::consts::PI).cos()).abs() < 1e-6);")]
+        /// ```
+        #[inline(always)]
+        pub fn cos_2pi(u: Real) -> Real {
+            let t = u.min(1.0 - u);
+            let y = (0.25 - t) * (2.0 * PI);
+            y * estrin(y * y, &SIN_HALF_PI)
+        }
+
         /// (sin x, cos x) for |x| ≤ 1000, accurate to about an ulp of 1
         /// (absolute), and to about an ulp of sin x itself for |x| ≤ π/4.
         ///
@@ -302,6 +367,46 @@ mod tests {
         );
         assert_eq!(super::f64::sin_cos(0.0), (0.0, 1.0));
         assert_eq!(super::f32::sin_cos(-0.0), (-0.0, 1.0));
+    }
+
+    /// `cos_2pi` against std over [0, 1] (4ε of 1 absolute, as for
+    /// `sin_cos_2pi`: our two roundings and the reference's own), and
+    /// relative to the value near the zero at u = ¼, where y = 2π(¼ − u)
+    /// is formed exactly and the polynomial is relative: 4 ulps of the
+    /// value, for ¼ − u from 2⁻³ down to 2⁻³².
+    #[test]
+    fn cos_2pi_matches_std() {
+        let n = 100_000;
+        let (mut worst64, mut worst32, mut worst_rel): (f64, f64, f64) = (0.0, 0.0, 0.0);
+        for i in 0..=n {
+            let u = i as f64 / n as f64;
+            let c_ref = (2.0 * std::f64::consts::PI * u).cos();
+            worst64 = worst64.max((super::f64::cos_2pi(u) - c_ref).abs());
+            let uf = u as f32;
+            let c_ref = (2.0 * std::f64::consts::PI * f64::from(uf)).cos();
+            worst32 = worst32.max((f64::from(super::f32::cos_2pi(uf)) - c_ref).abs());
+        }
+        for k in 3..=32 {
+            let d = 2f64.powi(-k);
+            for u in [0.25 - d, 0.25 + d, 0.75 - d, 0.75 + d] {
+                // cos 2πu = ±sin 2πd, computed from the exact d.
+                let exact = (2.0 * std::f64::consts::PI * d).sin();
+                let got = super::f64::cos_2pi(u).abs();
+                worst_rel = worst_rel.max(((got - exact) / exact).abs());
+            }
+        }
+        assert!(worst64 < 4.0 * f64::EPSILON, "f64 worst {worst64:e}");
+        assert!(worst32 < 4.0 * f32::EPSILON as f64, "f32 worst {worst32:e}");
+        assert!(
+            worst_rel < 4.0 * f64::EPSILON,
+            "relative worst {worst_rel:e}"
+        );
+        assert_eq!(super::f64::cos_2pi(0.25), 0.0);
+        assert_eq!(super::f32::cos_2pi(0.75), 0.0);
+        assert_eq!(super::f64::cos_2pi(0.5), -super::f64::cos_2pi(0.0));
+        assert_eq!(super::f64::cos_2pi(1.0), super::f64::cos_2pi(0.0));
+        assert!((super::f64::cos_2pi(0.0) - 1.0).abs() <= f64::EPSILON);
+        assert!((super::f32::cos_2pi(0.0) - 1.0).abs() <= f32::EPSILON);
     }
 
     #[test]
