@@ -279,7 +279,17 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// f32 sample has new numbers, so the independent rows are new draws:
 /// compared with the CLI on the same 728 rows, the mean coverage of the
 /// 99 % intervals went from 99.42 % to 99.28 % (randomized-QMC points
-/// do not come from this stream).)
+/// do not come from this stream). Re-pinned when light sampling of a
+/// sphere or sky cap, and the light half of MIS on them, came to draw n·ω
+/// alone (`ConeCosine`, the cone's azimuth measured from the normal's
+/// projection: the same distribution, not the same value for the same
+/// u; 0.80× the time of the f32 light estimate): the digest was
+/// 0x1bbd_28cf_9647_085b. Compared with the CLI on every built-in scene
+/// (7 strategies × 3 sequences, f32, 2^10…2^16 × 4 replicates, seed 3,
+/// 2,184 rows), the 273 rows of the tilted, straddling and several-lights
+/// spheres and the sky cap that use a cone's light samples are new draws
+/// and no other row moved; per strategy and sequence the geometric mean
+/// of the new to the old relative RMSE lies between 0.87 and 1.06.)
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -297,7 +307,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0x1bbd_28cf_9647_085b;
+const PINNED: u64 = 0xb7d5_c468_46c3_2132;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

@@ -1122,12 +1122,25 @@ mod tests {
     /// floor's factor 4.2 (estimators that are exact but for rounding:
     /// cosine sampling of a sky, projected sampling), by floor plus
     /// systematic error in the projected rows, and elsewhere by rounding,
-    /// at most 5e-8 relative.)
+    /// at most 5e-8 relative. And when light sampling of a sphere, and the
+    /// light half of MIS on spheres and sky caps, came to draw n·ω alone
+    /// (`ConeCosine`, the cone's azimuth measured from the normal's
+    /// projection: the same distribution, not the same value for the same
+    /// u); the digests were 0x51e9_017e_530c_0006 (Sobol) and
+    /// 0x7af2_aa0f_a6b4_8e90 (stratified). Compared row by row with the
+    /// reference study (4,992 rows, f64): the light, MIS and MIS-balance
+    /// rows of the tilted, straddling and several-lights spheres and the
+    /// sky cap (528 rows) are new draws, the rest did not move (the
+    /// overhead sphere's normal is the cone's axis, where both forms give
+    /// n_z cos θ). Over N ≥ 2¹⁰ the geometric mean of the new to the old
+    /// relative RMSE per strategy and sequence lies between 0.90 and 1.06,
+    /// and the mean coverage of the 99 % intervals between 0.990 and 1.0
+    /// in both.)
     #[test]
     fn randomized_qmc_estimates_are_pinned() {
         let pinned = [
-            (SequenceKind::Sobol, 0x51e9_017e_530c_0006_u64),
-            (SequenceKind::Stratified, 0x7af2_aa0f_a6b4_8e90),
+            (SequenceKind::Sobol, 0x5554_5e77_f74c_e369_u64),
+            (SequenceKind::Stratified, 0xdf1d_28ca_d69d_12b7),
         ];
         for (sequence, want) in pinned {
             let one = rqmc_bits(sequence, 1);

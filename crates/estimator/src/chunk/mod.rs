@@ -232,15 +232,17 @@ mod tests {
     /// One sample's value by the one-sample path,
     /// [`PreparedEmitter::evaluate_u`], except light sampling of a sphere,
     /// which the estimator has always taken through its cone:
-    /// F = L Ω max(n_local·ω_local, 0).
+    /// F = L Ω max(n_local·ω_local, 0), with n_local·ω_local drawn by
+    /// `ConeCosine` (the azimuth measured from n_local's projection).
     fn reference_value(p: &PreparedEmitter, receiver: &Receiver, u: DVec2, u2: DVec2) -> f64 {
         use lambert_light::emitter::Emitter;
-        use lambert_sampling::f64::SphereLightSampler;
+        use lambert_sampling::f64::{ConeCosine, SphereLightSampler};
         if let (Technique::Light, Emitter::Sphere(e)) = (p.technique, &p.emitter) {
             return match SphereLightSampler::new(e.sphere).at(receiver.point) {
                 Ok(s) => {
                     let n_local = s.frame().to_local(receiver.normal);
-                    e.radiance * s.solid_angle() * n_local.dot(s.cone().sample(u)).max(0.0)
+                    let cosine = ConeCosine::new(s.cone(), n_local).sample(u);
+                    e.radiance * s.solid_angle() * cosine.max(0.0)
                 }
                 Err(_) => 0.0,
             };

@@ -15,7 +15,10 @@
 //! the values are the same to the bit (the estimator's pinned-value tests
 //! check it). Light sampling of a sphere takes the shortcut of the cone in
 //! its own frame, F = L Ω max(n_local·ω_local, 0) (the pdf is the constant
-//! 1/Ω), as the estimator always has.
+//! 1/Ω), as the estimator always has, and since 2026-12 draws n_local·ω_local
+//! without ω, with the azimuth measured from n_local's projection
+//! ([`ConeCosine`]): the same distribution of values, not the same value
+//! for the same u.
 
 use glam::{DVec2, DVec3};
 use lambert_geometry::f64::PolygonFromOrigin;
@@ -23,8 +26,8 @@ use lambert_light::emitter::{Emitter, PolygonLight};
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
-    sample_uniform_hemisphere, LightSample, LightSampler, PolygonAreaSampler, PolygonSolidAngle,
-    SphereSolidAngle, TabulatedDiskSolidAngle,
+    sample_uniform_hemisphere, ConeCosine, LightSample, LightSampler, PolygonAreaSampler,
+    PolygonSolidAngle, SphereSolidAngle, TabulatedDiskSolidAngle,
 };
 use lambert_sampling::isa::Isa;
 
@@ -382,8 +385,9 @@ impl Block<'_> {
 }
 
 /// Light sampling of a sphere through its cone: F = L Ω max(n_local·ω, 0)
-/// with ω the cone's direction in its own frame and n_local the normal
-/// rotated into it once.
+/// with n_local the normal rotated into the cone's frame once, and
+/// n_local·ω drawn by [`ConeCosine`] (the azimuth measured from n_local's
+/// projection), which never builds ω.
 #[inline(always)]
 fn sphere_cone_batch(
     sphere: &SphereSolidAngle,
@@ -393,15 +397,13 @@ fn sphere_cone_batch(
     out: &mut [f64],
 ) -> PartHits {
     let scale = radiance * sphere.solid_angle();
-    let cone = *sphere.cone();
-    let n_local = sphere.frame().to_local(normal);
+    let cosine = ConeCosine::new(sphere.cone(), sphere.frame().to_local(normal));
     let mut hits = 0u64;
     block.each(
         out,
         #[inline(always)]
         |_, u, _| {
-            let w = cone.sample(u);
-            let f = scale * n_local.dot(w).max(0.0);
+            let f = scale * cosine.sample(u).max(0.0);
             hits += u64::from(f != 0.0);
             f
         },

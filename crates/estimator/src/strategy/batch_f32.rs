@@ -29,8 +29,8 @@ use glam::{Vec2, Vec3};
 use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
-    sample_uniform_sphere, LightSample, LightSampler, PolygonAreaSampler, PolygonSolidAngle,
-    TabulatedDiskSolidAngle, UniformCone,
+    sample_uniform_sphere, ConeCosine, LightSample, LightSampler, PolygonAreaSampler,
+    PolygonSolidAngle, TabulatedDiskSolidAngle, UniformCone,
 };
 use lambert_sampling::isa::Isa;
 
@@ -235,7 +235,9 @@ const MAX_FAN: usize = 4;
 
 /// Solid-angle sampling of a cone (a sphere's or a sky cap's) in its own
 /// frame: g = Ω max(n_local·ω_local, 0), n_local the receiver's normal
-/// rotated into the cone's frame once.
+/// rotated into the cone's frame once and n_local·ω_local drawn by
+/// [`ConeCosine`] (the azimuth measured from n_local's projection), as the
+/// f64 kernel of a sphere does.
 #[inline(always)]
 fn cone_batch(
     frame: &Frame,
@@ -245,14 +247,14 @@ fn cone_batch(
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
-    let n_local = frame.to_local(normal);
+    let cosine = ConeCosine::new(cone, frame.to_local(normal));
     let omega = cone.solid_angle();
     single(
         radiance,
         block,
         out,
         #[inline(always)]
-        |u| omega * n_local.dot(cone.sample(u)).max(0.0),
+        |u| omega * cosine.sample(u).max(0.0),
     )
 }
 

@@ -11,8 +11,13 @@
 //!   |ω − a|² ≤ 2(1 − cos θ_max), a the cone's axis in that frame
 //!   (|ω − a|² = 2(1 − ω·a) for unit vectors, and this form has no
 //!   cancellation near the axis, nor a division);
-//! - the **light-sampled** direction ω′ stays in the cone's frame, where the
-//!   receiver's normal n′ gives cos θ = n′·ω′ and p_c = max(cos θ, 0)/π.
+//! - the **light-sampled** direction ω′ is drawn in the cone's frame, where
+//!   the receiver's normal n′ gives cos θ = n′·ω′ and p_c = max(cos θ, 0)/π;
+//!   since nothing else of ω′ is needed, [`ConeCosine`] draws cos θ alone,
+//!   with ω′'s azimuth measured from n′'s projection (the same distribution,
+//!   one polynomial instead of two: MIS on the speed table's sphere took
+//!   0.83× the time in f64 and 0.96× in f32, against the direction's dot
+//!   product, in one A/B run).
 //!
 //! Each half then takes one division, so that the light half's value does
 //! not depend on the cosine half's: the values are those of two
@@ -25,7 +30,9 @@
 //! most of them). The f32 kernel does the same for vectors of sixteen
 //! samples, with a window built for f32 ([`CosineWindowF32`]).
 //!
-//! **Values before 2026-12:** the f64 halves shared one division,
+//! **Values before 2026-12:** the light half drew ω′ with its azimuth
+//! measured from the cone frame's x axis, and took n′·ω′. The f64 halves
+//! shared one division,
 //! r = 1/(D₁D₂), N₁/D₁ = N₁·D₂r, N₂/D₂ = N₂·D₁r
 //! ([`Heuristic::weighted_pair`]), an ulp or two from the present values;
 //! it made every light-sampled value wait for the cosine half's
@@ -51,6 +58,8 @@ use glam::{DVec2, DVec3, Vec2, Vec3};
 
 use super::cone_window::{CosineWindow, CosineWindowF32};
 use super::Heuristic;
+#[cfg(doc)]
+use lambert_sampling::f64::ConeCosine;
 
 /// `ConeMis` (f64) and `ConeMisF32` (the f32 estimator's, whose values
 /// leave the radiance out: it multiplies the sum by L in f64).
@@ -65,12 +74,11 @@ macro_rules! cone_mis {
             /// values' final product with the power of two, moved onto a
             /// factor every numerator has (module docs).
             scaled_radiance: $real,
-            /// The cone, about +z of its own frame.
-            cone: lambert_sampling::$p::UniformCone,
+            /// The cosines between the receiver's normal, in the cone's
+            /// frame, and the cone's directions.
+            cosine: lambert_sampling::$p::ConeCosine,
             /// The cone's axis in the receiver's frame.
             axis: $v3,
-            /// The receiver's normal in the cone's frame.
-            normal: $v3,
             /// 2(1 − cos θ_max), widened by a few ulps (as
             /// `UniformCone::pdf` widens its rim): |ω − a|² ≤ this is
             /// inside.
@@ -102,9 +110,11 @@ macro_rules! cone_mis {
                 $name {
                     scaled_radiance: radiance * scale,
                     scaled_cosine_pdf: (1.0 / std::$real::consts::PI) * scale,
-                    cone: *cone,
+                    cosine: lambert_sampling::$p::ConeCosine::new(
+                        cone,
+                        cone_frame.to_local(receiver.z),
+                    ),
                     axis: receiver.to_local(cone_frame.z),
-                    normal: cone_frame.to_local(receiver.z),
                     rim: 2.0 * cone.one_minus_cos_theta_max() * (1.0 + 8.0 * $real::EPSILON),
                     light_pdf: light_pdf * scale,
                     drawn: light_pdf > 0.0 && light_pdf < $real::INFINITY,
@@ -184,7 +194,7 @@ macro_rules! cone_mis {
             /// The light-sampled half's (N, D) from `v` ([`parts`](Self::parts)).
             #[inline(always)]
             fn light_quotient(&self, h: Heuristic, v: $v2) -> ($real, $real) {
-                let cos = self.normal.dot(self.cone.sample(v)).max(0.0);
+                let cos = self.cosine.sample(v).max(0.0);
                 Self::quotient(
                     h,
                     self.scaled_radiance * cos,
@@ -235,6 +245,15 @@ mod tests {
     use lambert_geometry::f64::Frame;
     use lambert_sampling::f64::{pdf_cosine_hemisphere, sample_cosine_hemisphere, UniformCone};
 
+    /// `w` (in the cone's frame) rotated about the cone's axis by the
+    /// azimuth of the receiver's normal in that frame: the light direction
+    /// whose cosine `ConeCosine` gives.
+    fn about_normal(w: DVec3, cone_frame: &Frame, receiver: &Frame) -> DVec3 {
+        let n = cone_frame.to_local(receiver.z);
+        let (s, c) = n.y.atan2(n.x).sin_cos();
+        DVec3::new(c * w.x - s * w.y, s * w.x + c * w.y, w.z)
+    }
+
     /// The two halves against the textbook two-sample estimator evaluated
     /// in world space (light pdf by the cone's own test, cosine pdf from
     /// the world direction): the same values to a few ulps.
@@ -264,8 +283,10 @@ mod tests {
                     0.0
                 };
                 inside += usize::from(p_l > 0.0);
-                // Light half, in world space.
-                let wl = cone_frame.from_local(cone.sample(v));
+                // Light half, in world space: the cone's direction with
+                // its azimuth measured from the normal's projection.
+                let wl =
+                    cone_frame.from_local(about_normal(cone.sample(v), &cone_frame, &receiver));
                 let cos = wl.dot(receiver.z).max(0.0);
                 let p_c = pdf_cosine_hemisphere(receiver.to_local(wl));
                 let want_l =
@@ -309,7 +330,7 @@ mod tests {
             let (p_l, p_l32) = (1.0 / cone.solid_angle(), 1.0 / cone32.solid_angle());
             let (a, a32) = (m.axis, m32.axis);
             let (rim, rim32) = (m.rim, m32.rim);
-            let (n, n32) = (m.normal, m32.normal);
+            let (n, n32) = (m.cosine, m32.cosine);
             let mut inside = [0usize; 2];
             for i in 0..2000u32 {
                 let u = DVec2::new(
@@ -322,7 +343,7 @@ mod tests {
                     let hit = (w - a).length_squared() <= rim;
                     inside[usize::from(hit)] += 1;
                     let (l_cos, p_light) = if hit { (1.5 * w.z, p_l) } else { (0.0, 0.0) };
-                    let cos = n.dot(cone.sample(v)).max(0.0);
+                    let cos = n.sample(v).max(0.0);
                     let want = (
                         h.weighted(l_cos, pdf_cosine_hemisphere(w), p_light),
                         h.weighted(1.5 * cos, p_l, cos * (1.0 / PI)),
@@ -332,7 +353,7 @@ mod tests {
                     let w = cos32(u32_);
                     let hit = (w - a32).length_squared() <= rim32;
                     let (l_cos, p_light) = if hit { (1.5 * w.z, p_l32) } else { (0.0, 0.0) };
-                    let cos = n32.dot(cone32.sample(v32)).max(0.0);
+                    let cos = n32.sample(v32).max(0.0);
                     let want = (
                         h.weighted_f32(l_cos, pdf_cos32(w), p_light),
                         h.weighted_f32(1.5 * cos, p_l32, cos * (1.0 / std::f32::consts::PI)),
