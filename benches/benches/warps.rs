@@ -88,6 +88,26 @@ fn warps(c: &mut Criterion) {
     let cone32 = s32::UniformCone::from_theta_max(0.3).unwrap();
     let cone64 = s64::UniformCone::from_theta_max(0.3).unwrap();
     both!("uniform cone", |u| cone32.sample(u), cone64.sample(u));
+    // n·ω for a tilted n: by the cone's direction, and by `ConeCosine`
+    // (one cosine polynomial, no direction), as the light kernels take it.
+    let (n32, n64) = (
+        Vec3::new(0.3, -0.5, 0.81).normalize(),
+        DVec3::new(0.3, -0.5, 0.81).normalize(),
+    );
+    let (cosine32, cosine64) = (
+        s32::ConeCosine::new(&cone32, n32),
+        s64::ConeCosine::new(&cone64, n64),
+    );
+    both!(
+        "cone cosine by the direction",
+        |u| Vec3::X * n32.dot(cone32.sample(u)),
+        DVec3::X * n64.dot(cone64.sample(u))
+    );
+    both!(
+        "cone cosine by ConeCosine",
+        |u| Vec3::X * cosine32.sample(u),
+        DVec3::X * cosine64.sample(u)
+    );
     let sph32 = s32::SphereSolidAngle::new(
         Vec3::ZERO,
         &g32::Sphere::new(Vec3::new(5.0, 0.0, 8.66), 1.0).unwrap(),
