@@ -226,8 +226,10 @@ macro_rules! trig_impl {
         /// t = min(u, 1 − u) ∈ [0, ½], and cos 2πt = sin(2π(¼ − t)). Both
         /// steps are exact for the u the samplers draw: 1 − u is exact for
         /// u ≥ ½ (Sterbenz), ¼ − t is exact for t ≥ ⅛ (Sterbenz again) and
-        /// for any t on a 2⁻³² grid, and otherwise rounds where
-        /// cos 2πu > 0.7, by at most half an ulp of ¼. y = 2π(¼ − t) ∈
+        /// for any t on the samplers' grid (2⁻³² in f64, 2⁻²⁴ in f32: ¼ − t
+        /// then needs at most 30 or 22 significant bits), and otherwise
+        /// rounds where cos 2πu > 0.7, by at most half an ulp of ¼.
+        /// y = 2π(¼ − t) ∈
         /// [−π/2, π/2] then carries one rounding, and sin y is y times a
         /// near-minimax polynomial in y² (9 terms in f64, 5 in f32) whose
         /// error is below half an ulp on that interval. So the result is
