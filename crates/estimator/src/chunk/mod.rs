@@ -352,6 +352,27 @@ mod tests {
         SCRATCH.with(|cell| cell.borrow_mut().values = values);
     }
 
+    /// `run` (a chunk of `n` samples) gives the same estimate and hits
+    /// after `leave` put NaNs or a longer chunk's values in its values
+    /// buffer as on an empty one, and a finite estimate: the check of both
+    /// precisions' `overwriting_first_emitter_ignores_what_the_buffer_held`.
+    pub(super) fn assert_ignores_stale_buffer(
+        leave: fn(Vec<f64>),
+        run: &dyn Fn() -> ChunkResult,
+        n: usize,
+        case: &str,
+    ) {
+        leave(Vec::new());
+        let fresh = run();
+        assert_eq!(fresh.estimate.non_finite(), 0, "{case}");
+        for stale in [vec![f64::NAN; 2 * n], vec![1e300; n + 1]] {
+            leave(stale);
+            let again = run();
+            assert_eq!(again.estimate, fresh.estimate, "{case}");
+            assert_eq!(again.hits, fresh.hits, "{case}");
+        }
+    }
+
     /// The first emitter overwrites each block's values ([`first_overwrites`]),
     /// so a chunk gives the bits of one on a zeroed buffer whatever the
     /// buffer held: NaNs (an unwritten slot would carry one into the
@@ -373,17 +394,9 @@ mod tests {
                         &|| independent_chunk(&prepared, receiver, 7, n, isa),
                         &|| sequence_chunk(&prepared, receiver, &sobol, 64..64 + n as u64, isa),
                     ];
+                    let case = format!("{} {strategy} {isa}", named.name);
                     for run in runs {
-                        leave_in_buffer(Vec::new());
-                        let fresh = run();
-                        assert_eq!(fresh.estimate.non_finite(), 0, "{}", named.name);
-                        for stale in [vec![f64::NAN; 2 * n], vec![1e300; n + 1]] {
-                            leave_in_buffer(stale);
-                            let again = run();
-                            let case = format!("{} {strategy} {isa}", named.name);
-                            assert_eq!(again.estimate, fresh.estimate, "{case}");
-                            assert_eq!(again.hits, fresh.hits, "{case}");
-                        }
+                        assert_ignores_stale_buffer(leave_in_buffer, run, n, &case);
                     }
                 }
             }

@@ -341,6 +341,7 @@ impl Coordinates for SequenceBlock<'_> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::tests::assert_ignores_stale_buffer;
     use super::*;
     use crate::estimation::{prepare, prepare_f32};
     use crate::strategy::Strategy;
@@ -378,16 +379,9 @@ mod tests {
                         sequence_chunk_f32(&prepared, &f32s, &scene.receiver, &sobol, range, isa)
                     },
                 ];
+                let case = format!("{} {strategy}", named.name);
                 for run in runs {
-                    leave_in_buffer(Vec::new());
-                    let fresh = run();
-                    assert_eq!(fresh.estimate.non_finite(), 0, "{}", named.name);
-                    for stale in [vec![f64::NAN; 2 * n], vec![1e300; n + 1]] {
-                        leave_in_buffer(stale);
-                        let again = run();
-                        assert_eq!(again.estimate, fresh.estimate, "{} {strategy}", named.name);
-                        assert_eq!(again.hits, fresh.hits, "{} {strategy}", named.name);
-                    }
+                    assert_ignores_stale_buffer(leave_in_buffer, run, n, &case);
                 }
                 overwriting += usize::from(first_overwrites(&f32s));
             }
