@@ -235,19 +235,18 @@ const MAX_FAN: usize = 4;
 
 /// Solid-angle sampling of a cone (a sphere's or a sky cap's) in its own
 /// frame: g = Ω max(n_local·ω_local, 0), n_local the receiver's normal
-/// rotated into the cone's frame once and n_local·ω_local drawn by
-/// [`ConeCosine`] (the azimuth measured from n_local's projection), as the
-/// f64 kernel of a sphere does.
+/// rotated into the cone's frame and n_local·ω_local drawn by `cosine`
+/// ([`ConeCosine`], the azimuth measured from n_local's projection; built
+/// once per prepared emitter), as the f64 kernel of a sphere does.
 #[inline(always)]
 fn cone_batch(
-    frame: &Frame,
+    cosine: &ConeCosine,
     cone: &UniformCone,
-    normal: Vec3,
     radiance: f64,
     block: &Block<'_>,
     out: &mut [f64],
 ) -> PartHits {
-    let cosine = ConeCosine::new(cone, frame.to_local(normal));
+    let cosine = *cosine;
     let omega = cone.solid_angle();
     single(
         radiance,
@@ -625,8 +624,8 @@ impl PreparedEmitterF32 {
     fn light_batch(&self, block: &Block<'_>, out: &mut [f64]) -> PartHits {
         let (normal, radiance) = (self.normal, if self.lit { self.radiance } else { 0.0 });
         match &self.light {
-            Light::Sphere(s) => cone_batch(s.frame(), s.cone(), normal, radiance, block, out),
-            Light::Cap(frame, cone) => cone_batch(frame, cone, normal, radiance, block, out),
+            Light::Sphere(s, cosine) => cone_batch(cosine, s.cone(), radiance, block, out),
+            Light::Cap(_, cone, cosine) => cone_batch(cosine, cone, radiance, block, out),
             Light::Sky => single(
                 radiance,
                 block,
@@ -855,7 +854,7 @@ impl PreparedEmitterF32 {
                 block,
                 out,
             ),
-            Light::Cap(frame, cone) => self.mis_loop(
+            Light::Cap(frame, cone, _) => self.mis_loop(
                 h,
                 sees,
                 #[inline(always)]
@@ -865,7 +864,7 @@ impl PreparedEmitterF32 {
                 block,
                 out,
             ),
-            Light::Sphere(s) => self.mis_loop(
+            Light::Sphere(s, _) => self.mis_loop(
                 h,
                 sees,
                 #[inline(always)]

@@ -24,9 +24,10 @@ use lambert_geometry::f32::{ConvexPolygon, Disk, Frame, Sphere};
 use lambert_light::emitter::Emitter;
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f32::{
-    DiskAreaSampler, DiskSolidAngle, PolygonAreaSampler, PolygonLightSampler, PolygonSolidAngle,
-    ProjectedCap, ProjectedPolygon, ProjectedPolygonSampler, ProjectedSphere, SphereAreaSampler,
-    SphereSolidAngle, TabulatedDiskSolidAngle, TabulatedProjectedPolygon, UniformCone,
+    ConeCosine, DiskAreaSampler, DiskSolidAngle, PolygonAreaSampler, PolygonLightSampler,
+    PolygonSolidAngle, ProjectedCap, ProjectedPolygon, ProjectedPolygonSampler, ProjectedSphere,
+    SphereAreaSampler, SphereSolidAngle, TabulatedDiskSolidAngle, TabulatedProjectedPolygon,
+    UniformCone,
 };
 use std::fmt;
 
@@ -143,8 +144,11 @@ pub(super) enum Shape {
 #[derive(Clone, Debug)]
 pub(super) enum Light {
     Sky,
-    Cap(Frame, UniformCone),
-    Sphere(SphereSolidAngle),
+    /// A sky cap, with the cosines between the receiver's normal and its
+    /// directions ([`ConeCosine`], built once here, not per block).
+    Cap(Frame, UniformCone, ConeCosine),
+    /// A sphere's cone, with the cosines as for [`Light::Cap`].
+    Sphere(SphereSolidAngle, ConeCosine),
     Polygon(PolygonSolidAngle),
     /// Tabulated: this path is for many samples at one receiver.
     Disk(TabulatedDiskSolidAngle),
@@ -285,10 +289,10 @@ impl PreparedEmitterF32 {
             return Err(FallbackReason::ErrorBound { relative });
         }
         let cone_mis = match (draws, &light, lit) {
-            (Some(Technique::Mis(_)), Light::Cap(cone_frame, cone), true) => {
+            (Some(Technique::Mis(_)), Light::Cap(cone_frame, cone, _), true) => {
                 Some(ConeMisF32::new(1.0, cone_frame, cone, &frame))
             }
-            (Some(Technique::Mis(_)), Light::Sphere(s), true) => {
+            (Some(Technique::Mis(_)), Light::Sphere(s, _), true) => {
                 Some(ConeMisF32::new(1.0, s.frame(), s.cone(), &frame))
             }
             _ => None,
@@ -428,9 +432,13 @@ fn shape_of(emitter: &Emitter, p: DVec3) -> Result<(Shape, bool, f64), FallbackR
 fn light_of(light: &EmitterLight, shape: &Shape, normal: Vec3) -> Result<Light, FallbackReason> {
     Ok(match (light, shape) {
         (EmitterLight::Sky, _) => Light::Sky,
-        (EmitterLight::Cap(..), Shape::Cap(frame, cone)) => Light::Cap(*frame, *cone),
+        (EmitterLight::Cap(..), Shape::Cap(frame, cone)) => {
+            Light::Cap(*frame, *cone, ConeCosine::new(cone, frame.to_local(normal)))
+        }
         (EmitterLight::Sphere(_), Shape::Sphere(sphere)) => {
-            Light::Sphere(SphereSolidAngle::new(Vec3::ZERO, sphere).map_err(unbuildable)?)
+            let s = SphereSolidAngle::new(Vec3::ZERO, sphere).map_err(unbuildable)?;
+            let cosine = ConeCosine::new(s.cone(), s.frame().to_local(normal));
+            Light::Sphere(s, cosine)
         }
         (EmitterLight::Disk(_) | EmitterLight::DiskTable(_), Shape::Disk(disk)) => {
             Light::Disk(TabulatedDiskSolidAngle::new(
