@@ -235,7 +235,8 @@ fn results_are_bit_identical_across_threads_and_runs() {
 
 /// The instruction-set decision: results do not depend on the set the
 /// kernels run with. Every built-in scene × strategy × sequence, forced to
-/// each set this processor has (baseline SSE2, AVX2+FMA, AVX-512), on one
+/// each set this processor has (baseline SSE2, AVX2+FMA, AVX-512, AVX-512
+/// with GFNI), on one
 /// and on two threads, gives the bits of the baseline on one thread.
 #[test]
 fn results_are_bit_identical_across_instruction_sets() {

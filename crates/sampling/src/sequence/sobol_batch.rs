@@ -138,7 +138,7 @@ fn nibbles(dim: usize) -> &'static [[u32; 16]; 8] {
 
 /// `y[k] = A_t · j[k]` by the nibble tables, sixteen indices to an
 /// AVX-512 register, for the whole vectors of `j` when the process's set
-/// ([`Isa::selected`]) is AVX-512; returns how many it computed (the
+/// ([`Isa::selected`]) is one of the AVX-512 ones; returns how many it computed (the
 /// caller does the rest with the byte tables, to the same bits: both are
 /// the XOR of the same columns).
 ///
@@ -151,7 +151,7 @@ fn nibbles(dim: usize) -> &'static [[u32; 16]; 8] {
 #[inline(always)]
 fn nibble_products_avx512(nibbles: &[[u32; 16]; 8], j: &[u32], y: &mut [u32]) -> usize {
     #[cfg(target_arch = "x86_64")]
-    if crate::isa::Isa::selected() == crate::isa::Isa::Avx512 {
+    if crate::isa::Isa::selected() >= crate::isa::Isa::Avx512 {
         if let Some(simd) = pulp::x86::V4::try_new() {
             let whole = j.len().min(y.len()) / 16 * 16;
             simd.vectorize(

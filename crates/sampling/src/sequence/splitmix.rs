@@ -75,7 +75,7 @@ fn group_f32(state: u64, x: &mut [f32; GROUP], y: &mut [f32; GROUP]) {
 }
 
 /// Whole groups of the f32 fill with AVX-512, when `isa` is
-/// [`Isa::Avx512`] and the processor has it; returns whether it filled
+/// [`Isa::Avx512`] or [`Isa::Avx512Gfni`] and the processor has it; returns whether it filled
 /// them. `state` is the first group's output-0 state, `x` and `y` are
 /// whole groups.
 ///
@@ -91,7 +91,7 @@ fn group_f32(state: u64, x: &mut [f32; GROUP], y: &mut [f32; GROUP]) {
 #[inline(always)]
 fn fill_groups_avx512(isa: Isa, state: u64, x: &mut [f32], y: &mut [f32]) -> bool {
     #[cfg(target_arch = "x86_64")]
-    if isa == Isa::Avx512 {
+    if isa >= Isa::Avx512 {
         if let Some(simd) = pulp::x86::V4::try_new() {
             simd.vectorize(
                 #[inline(always)]
