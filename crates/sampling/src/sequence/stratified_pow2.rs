@@ -39,6 +39,21 @@
 
 use super::stratified_batch::{golden_unit, hash_u32, Domain, PairKeys};
 
+/// `x ≫ s`, and 0 for `s ≥ 32` (Rust's `>>` wraps the count). One
+/// instruction in vector lanes: x86's variable shifts (`vpsrlvd`) give 0
+/// for counts past the width, and the compiler folds the select into
+/// them, where the former form, two shifts `(x ≫ 1) ≫ (s − 1)`, was two.
+#[inline(always)]
+fn shr_or_zero(x: u32, s: u32) -> u32 {
+    x.checked_shr(s).unwrap_or(0)
+}
+
+/// `x ≪ s`, and 0 for `s ≥ 32` ([`shr_or_zero`]'s mirror, `vpsllvd`).
+#[inline(always)]
+fn shl_or_zero(x: u32, s: u32) -> u32 {
+    x.checked_shl(s).unwrap_or(0)
+}
+
 /// What `N = 2^p` fixes: the logarithms of `N`, `nx` and `ny`, and the
 /// multipliers of the cell order and the spreads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,10 +64,6 @@ pub(super) struct PowerOfTwoGrid {
     log_nx: u32,
     /// `log₂ ny`.
     log_ny: u32,
-    /// `(p − 24)⁺` and `(24 − p)⁺`: the shifts taking a stratum to its
-    /// share of an f32 coordinate's 24 bits.
-    f32_right: u32,
-    f32_left: u32,
     /// The first pair's multiplier `α` (`golden_unit(N)`).
     alpha: u32,
     /// The column spread's multiplier `g_x` (`golden_unit(nx)`).
@@ -71,8 +82,6 @@ impl PowerOfTwoGrid {
         let log_n = n.trailing_zeros();
         Some(PowerOfTwoGrid {
             log_n,
-            f32_right: log_n.saturating_sub(24),
-            f32_left: 24u32.saturating_sub(log_n),
             log_nx: nx.trailing_zeros(),
             log_ny: ny.trailing_zeros(),
             alpha: golden_unit(n),
@@ -92,8 +101,10 @@ impl PowerOfTwoGrid {
     /// `⌊(k·2³² + h) / 2^(p+8)⌋ · 2⁻²⁴`, exactly (module docs).
     #[inline(always)]
     pub(super) fn unit_f32(self, (k, h): (u32, u32)) -> f32 {
-        // h ≫ 8 < 2²⁴ ≤ 2ᵖ⁺⁸ vanishes for p ≥ 24, and the shift stays below 32.
-        let top = ((k >> self.f32_right) << self.f32_left) | ((h >> 8) >> self.log_n);
+        // k·2^(32−p) puts the stratum's p bits at the top of a word (k < 2ᵖ);
+        // dropping 8 bits leaves k·2^(24−p) for p ≤ 24 and ⌊k / 2^(p−24)⌋
+        // above. The jitter's share, h ≫ (p + 8), vanishes for p ≥ 24.
+        let top = (shl_or_zero(k, 32 - self.log_n) >> 8) | shr_or_zero(h, self.log_n + 8);
         top as f32 * (1.0 / 16_777_216.0)
     }
 
@@ -127,10 +138,9 @@ impl PowerOfTwoGrid {
             let (c, r) = (cell & nx_mask, cell >> log_nx);
             let column_spread = c.wrapping_mul(self.column_unit) & nx_mask;
             let row_spread = r.wrapping_mul(self.row_unit) & ny_mask;
-            // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), split in two shifts
-            // so that log = 0 shifts by 31 + 1, not by 32.
-            let s = (hash_u32(keys.sigma, c) >> 1) >> (31 - log_ny);
-            let t = (hash_u32(keys.tau, r) >> 1) >> (31 - log_nx);
+            // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), 0 for log = 0.
+            let s = shr_or_zero(hash_u32(keys.sigma, c), 32 - log_ny);
+            let t = shr_or_zero(hash_u32(keys.tau, r), 32 - log_nx);
             let kx = (c << log_ny) | ((row_spread + s) & ny_mask);
             let ky = (r << log_nx) | ((column_spread + t) & nx_mask);
             *x = store((kx, hash_u32(jitter_x, i)));
