@@ -435,3 +435,25 @@ fn f32_zero_variance_estimates_are_within_their_error_bound() {
         );
     }
 }
+
+/// Light sampling of a sphere light the horizon does not cut counts every
+/// sample as a hit (its kernel then skips the clamp and the count, and
+/// reports the block's length); one the horizon cuts counts some but not
+/// all. Each case on every sequence; the straddling sphere is the negative
+/// control, showing the count is not the sample count regardless.
+#[test]
+fn f32_sphere_light_hits_are_every_sample_only_above_the_horizon() {
+    // Centre 30° off the normal: radius 1 at distance 10 clears the
+    // horizon (half-angle 5.7°); radius 1 at distance 1.05 does not
+    // (half-angle 72°, reaching 102° from the normal).
+    let clear = sphere_at(10.0, 1.0, 1.0);
+    let cut = sphere_at(1.05, 1.0, 1.0);
+    for sequence in SequenceKind::ALL {
+        let mut c = config(Strategy::Light, sequence, 5);
+        c.samples = 70_003;
+        let r = estimate(&clear, &c).unwrap();
+        assert_eq!(r.hits, c.samples, "{sequence:?}");
+        let r = estimate(&cut, &c).unwrap();
+        assert!(r.hits > 0 && r.hits < c.samples, "{sequence:?}: {}", r.hits);
+    }
+}

@@ -69,6 +69,39 @@ macro_rules! cone_cosine_impl {
                 let sin_theta = (one_minus_cos * (2.0 - one_minus_cos)).max(0.0).sqrt();
                 self.rho * sin_theta * cos_2pi(u.y) + self.z * cos_theta
             }
+
+            /// Whether every value [`sample`](Self::sample) returns is
+            /// positive: the cone is at most a hemisphere (h ≤ 1), n_z > 0,
+            /// and the cosine of the cone's direction farthest from n,
+            ///
+            /// min n·ω = n_z cos θmax − ρ sin θmax = cos(θₙ + θmax)
+            ///
+            /// (θₙ the angle from the cone's axis to n; with θmax ≤ π/2 and
+            /// θₙ < π/2 the sum stays below π, where this is the minimum),
+            /// exceeds 2⁻¹⁰. The margin is far above the rounding of
+            /// `sample` (within 16ε of the exact value, ε = 2⁻⁵² or 2⁻²³,
+            /// as this module's tests check) and of this bound itself, so
+            /// a caller may drop its clamp at 0 and count every sample as
+            /// a hit (the whole cone lies above the receiver's horizon, as
+            /// a sphere light that the horizon does not cut).
+            ///
+            /// ```
+            #[doc = concat!("use lambert_sampling::", stringify!($p), "::{ConeCosine, UniformCone};")]
+            #[doc = concat!("use glam::", stringify!($v3), ";")]
+            /// let cone = UniformCone::from_cos_theta_max(0.99)?; // θmax ≈ 8.1°
+            #[doc = concat!("let up = ", stringify!($v3), "::new(0.5, 0.0, 0.75_f64.sqrt() as _);")]
+            #[doc = concat!("let grazing = ", stringify!($v3), "::new(1.0, 0.0, 0.05);")]
+            /// assert!(ConeCosine::new(&cone, up).is_above_horizon()); // θₙ = 30°
+            /// assert!(!ConeCosine::new(&cone, grazing.normalize()).is_above_horizon());
+            /// # Ok::<(), lambert_sampling::SamplingError>(())
+            /// ```
+            #[inline]
+            pub fn is_above_horizon(&self) -> bool {
+                const MARGIN: Real = 1.0 / 1024.0;
+                let sin_theta_max = (self.h * (2.0 - self.h)).max(0.0).sqrt();
+                let least = self.z * (1.0 - self.h) - self.rho * sin_theta_max;
+                self.h <= 1.0 && self.z > 0.0 && least > MARGIN
+            }
         }
     };
 }
@@ -138,6 +171,69 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Where `is_above_horizon` holds, every sample on a fine grid of u
+    /// (both ends included) is positive, in both precisions; it holds
+    /// exactly where the cone's lowest direction, computed apart in f64
+    /// from the angles, clears the horizon by more than the margin (cases
+    /// within 10⁻⁹ of the margin are skipped). Negative control: where it
+    /// does not hold and the lowest direction is below the horizon, some
+    /// sample is ≤ 0, so the check is not vacuous.
+    #[test]
+    fn above_the_horizon_every_sample_is_positive() {
+        let mut held = 0;
+        let mut negative = 0;
+        for cos_max in [0.999_999, 0.99, 0.9, 0.5, 0.1, 0.0, -0.5] {
+            let cone = crate::f64::UniformCone::from_cos_theta_max(cos_max).unwrap();
+            let cone32 = crate::f32::UniformCone::from_cos_theta_max(cos_max as f32).unwrap();
+            for tilt_degrees in [0.0, 10.0, 30.0, 60.0, 80.0, 84.0, 89.0, 90.0, 120.0] {
+                let tilt = f64::to_radians(tilt_degrees);
+                let n = DVec3::new(tilt.sin(), 0.0, tilt.cos());
+                let lowest = (tilt + cos_max.acos()).cos();
+                let clear = cos_max >= 0.0 && tilt < std::f64::consts::FRAC_PI_2;
+                if clear && (lowest - 1.0 / 1024.0).abs() < 1e-9 {
+                    continue;
+                }
+                let want = clear && lowest > 1.0 / 1024.0;
+                let cosine = crate::f64::ConeCosine::new(&cone, n);
+                let cosine32 = crate::f32::ConeCosine::new(&cone32, n.as_vec3());
+                assert_eq!(
+                    cosine.is_above_horizon(),
+                    want,
+                    "cos {cos_max} tilt {tilt_degrees}"
+                );
+                let grid = (0..=64).flat_map(|i| (0..=64).map(move |j| (i, j)));
+                let least = grid
+                    .map(|(i, j)| DVec2::new(f64::from(i) / 64.0, f64::from(j) / 64.0))
+                    .map(|u| cosine.sample(u))
+                    .fold(f64::INFINITY, f64::min);
+                if want {
+                    held += 1;
+                    assert!(least > 0.0, "cos {cos_max} tilt {tilt_degrees}: {least}");
+                }
+                if cosine32.is_above_horizon() {
+                    let least32 = (0..=64)
+                        .flat_map(|i| {
+                            (0..=64).map(move |j| Vec2::new(i as f32 / 64.0, j as f32 / 64.0))
+                        })
+                        .map(|u| cosine32.sample(u))
+                        .fold(f32::INFINITY, f32::min);
+                    assert!(
+                        least32 > 0.0,
+                        "f32 cos {cos_max} tilt {tilt_degrees}: {least32}"
+                    );
+                }
+                if !want && lowest < 0.0 && cos_max >= 0.0 {
+                    negative += 1;
+                    assert!(least <= 0.0, "cos {cos_max} tilt {tilt_degrees}: {least}");
+                }
+            }
+        }
+        assert!(
+            held >= 10 && negative >= 5,
+            "held {held}, negative {negative}"
+        );
     }
 
     /// Negative control: without the rotation (n·ω for the cone's own

@@ -227,6 +227,7 @@ mod tests {
     use crate::strategy::{Strategy, Technique};
     use glam::DVec2;
     use lambert_light::builtin::builtin_scenes;
+    use lambert_light::emitter::Emitter;
     use lambert_sampling::sequence::{Sobol, Stratified};
 
     /// One sample's value by the one-sample path,
@@ -235,7 +236,6 @@ mod tests {
     /// F = L Ω max(n_local·ω_local, 0), with n_local·ω_local drawn by
     /// `ConeCosine` (the azimuth measured from n_local's projection).
     fn reference_value(p: &PreparedEmitter, receiver: &Receiver, u: DVec2, u2: DVec2) -> f64 {
-        use lambert_light::emitter::Emitter;
         use lambert_sampling::f64::{ConeCosine, SphereLightSampler};
         if let (Technique::Light, Emitter::Sphere(e)) = (p.technique, &p.emitter) {
             return match SphereLightSampler::new(e.sphere).at(receiver.point) {
@@ -258,7 +258,7 @@ mod tests {
         receiver: &Receiver,
         seed: u64,
         n: usize,
-    ) -> Estimate {
+    ) -> (Estimate, Vec<u64>) {
         use rand_core::{RngCore, SeedableRng};
         let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(seed);
         let mut values = vec![0.0; n];
@@ -271,16 +271,21 @@ mod tests {
                 (bits & 0xffff_ffff) as f64 * scale,
             )
         };
+        let mut nonzero = Vec::new();
         for p in prepared {
             u.iter_mut().for_each(|x| *x = next());
             if p.technique.dimensions() > 1 {
                 u2.iter_mut().for_each(|x| *x = next());
             }
+            let mut count = 0;
             for (k, v) in values.iter_mut().enumerate() {
-                *v += reference_value(p, receiver, u[k], u2[k]);
+                let value = reference_value(p, receiver, u[k], u2[k]);
+                count += u64::from(value != 0.0);
+                *v += value;
             }
+            nonzero.push(count);
         }
-        Estimate::from_values(&values)
+        (Estimate::from_values(&values), nonzero)
     }
 
     /// Every built-in scene × strategy × instruction set: the block kernels
@@ -288,15 +293,29 @@ mod tests {
     /// and a partial one.
     #[test]
     fn blocks_lanes_and_instruction_sets_keep_every_bit() {
+        // Sphere light sampling's chunks with every sample a hit and with
+        // some missed: both of its kernel's paths are compared.
+        let mut sphere_paths = [0; 2];
         for named in builtin_scenes() {
             let receiver = named.scene.receiver;
             for strategy in std::iter::once(Strategy::Auto).chain(Strategy::ALL) {
                 let (prepared, _) = prepare(&named.scene, strategy);
                 for (seed, n) in [(3u64, 4096usize), (17, 1000)] {
-                    let want = reference_independent(&prepared, &receiver, seed, n);
+                    let (want, nonzero) = reference_independent(&prepared, &receiver, seed, n);
                     for isa in Isa::available() {
                         let got = independent_chunk(&prepared, &receiver, seed, n, isa);
                         assert_eq!(got.estimate, want, "{} {strategy} {isa}", named.name);
+                        // A sphere's light sampling counts its non-zero
+                        // values, with or without the clamp (a cone above
+                        // the horizon counts every sample).
+                        for ((p, hits), &count) in prepared.iter().zip(&got.hits).zip(&nonzero) {
+                            if let (Technique::Light, Emitter::Sphere(_)) =
+                                (p.technique, &p.emitter)
+                            {
+                                assert_eq!(*hits, [count, 0], "{} {strategy} {isa}", named.name);
+                                sphere_paths[usize::from(count < n as u64)] += 1;
+                            }
+                        }
                     }
                 }
                 // Randomized QMC: the old path evaluated the whole chunk's
@@ -345,6 +364,7 @@ mod tests {
                 }
             }
         }
+        assert!(sphere_paths.iter().all(|&c| c > 0), "{sphere_paths:?}");
     }
 
     /// Sets this thread's f64 values buffer to `values`.

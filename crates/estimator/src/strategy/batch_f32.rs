@@ -248,6 +248,22 @@ fn cone_batch(
 ) -> PartHits {
     let cosine = *cosine;
     let omega = cone.solid_angle();
+    if cosine.is_above_horizon() && omega >= f32::MIN_POSITIVE {
+        // Every g is positive (a cosine above 2⁻¹⁰ times a normal Ω): the
+        // same values without the clamp, and every sample hits.
+        return accumulate_spans(
+            radiance,
+            block,
+            out,
+            #[inline(always)]
+            |[ux, uy, _, _], sums| {
+                for k in 0..sums.len() {
+                    sums[k] = omega * cosine.sample(Vec2::new(ux[k], uy[k]));
+                }
+                [sums.len() as u32, 0]
+            },
+        );
+    }
     single(
         radiance,
         block,
