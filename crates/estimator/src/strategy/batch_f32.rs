@@ -382,6 +382,7 @@ fn cone_mis_batch(
     }
     // Local copies stay in registers.
     let (cone, window) = (*cone, *window);
+    let every_light_hits = cone.every_light_half_is_positive();
     // Scratch of pass 3, cleared once per block, not per span.
     let mut lights = [0.0f32; SPAN];
     let mut listed = [0u16; SPAN];
@@ -394,30 +395,42 @@ fn cone_mis_batch(
         |[ux, uy, vx, vy], sums| {
             let len = sums.len();
             let lights = &mut lights[..len];
-            // Pass 1. Counted per lane and added up once per span.
+            // Pass 1. Counted per lane and added up once per span, unless
+            // every light half is positive.
             let mut lane_hits = [0u32; MIS_GROUP];
             let (groups, _) = sums.as_chunks_mut::<MIS_GROUP>();
             let whole = groups.len() * MIS_GROUP;
             fn lanes(c: &[f32], whole: usize) -> &[[f32; MIS_GROUP]] {
                 c[..whole].as_chunks::<MIS_GROUP>().0
             }
-            let (light_groups, _) = lights.as_chunks_mut::<MIS_GROUP>();
-            let coordinates = lanes(vx, whole).iter().zip(lanes(vy, whole));
-            for ((sums, lights), (vx, vy)) in groups.iter_mut().zip(light_groups).zip(coordinates) {
-                for k in 0..MIS_GROUP {
+            let light_hits = if every_light_hits {
+                for k in 0..len {
                     let light = cone.light_value(h, Vec2::new(vx[k], vy[k]));
-                    lane_hits[k] += u32::from(light != 0.0);
                     lights[k] = light;
                     sums[k] = 0.0 + light;
                 }
-            }
-            let mut light_hits: u32 = lane_hits.iter().sum();
-            for k in whole..len {
-                let light = cone.light_value(h, Vec2::new(vx[k], vy[k]));
-                light_hits += u32::from(light != 0.0);
-                lights[k] = light;
-                sums[k] = 0.0 + light;
-            }
+                len as u32
+            } else {
+                let (light_groups, _) = lights.as_chunks_mut::<MIS_GROUP>();
+                let coordinates = lanes(vx, whole).iter().zip(lanes(vy, whole));
+                let groups = groups.iter_mut().zip(light_groups).zip(coordinates);
+                for ((sums, lights), (vx, vy)) in groups {
+                    for k in 0..MIS_GROUP {
+                        let light = cone.light_value(h, Vec2::new(vx[k], vy[k]));
+                        lane_hits[k] += u32::from(light != 0.0);
+                        lights[k] = light;
+                        sums[k] = 0.0 + light;
+                    }
+                }
+                let mut light_hits: u32 = lane_hits.iter().sum();
+                for k in whole..len {
+                    let light = cone.light_value(h, Vec2::new(vx[k], vy[k]));
+                    light_hits += u32::from(light != 0.0);
+                    lights[k] = light;
+                    sums[k] = 0.0 + light;
+                }
+                light_hits
+            };
             // Pass 2.
             let mut count = 0;
             let mut masks = [0u16; SPAN / MIS_GROUP];
