@@ -388,7 +388,13 @@ macro_rules! spherical_rectangle_impl {
             /// τ = 32ε rad. As for the triangle, the slack absorbs the few-ε
             /// rounding of a unit vector sampled on an edge, so that
             /// pdf(sample(u)) equals the returned density.
-            #[inline]
+            ///
+            /// Inlined and branch-free (the four tests joined by `&`, not
+            /// `&&`): MIS kernels call it per sample through
+            /// [`pdf`](Self::pdf), and a call left out of line kept their
+            /// loops scalar (f32 MIS on a rectangle light took 113 ns a
+            /// sample).
+            #[inline(always)]
             pub fn contains(&self, w: V3) -> bool {
                 let (wx, wy, wz) = (w.dot(self.ex), w.dot(self.ey), w.dot(self.ez));
                 let (x1, y1, d) = (self.x0 + self.w, self.y0 + self.h, self.d);
@@ -397,16 +403,16 @@ macro_rules! spherical_rectangle_impl {
                     a * va + b * vb >= -tol * (a * a + b * b).sqrt()
                 };
                 edge(d, self.y0, wy, wz)
-                    && edge(-d, -y1, wy, wz)
-                    && edge(d, self.x0, wx, wz)
-                    && edge(-d, -x1, wx, wz)
+                    & edge(-d, -y1, wy, wz)
+                    & edge(d, self.x0, wx, wz)
+                    & edge(-d, -x1, wx, wz)
             }
 
             /// The density 1/S per steradian of the unit direction `w` if it
             /// lies in the spherical rectangle (see
             /// [`SphericalRectangle::contains`]), 0 otherwise; never NaN for
             /// finite `w`.
-            #[inline]
+            #[inline(always)]
             pub fn pdf(&self, w: V3) -> Real {
                 if self.contains(w) {
                     1.0 / self.solid_angle
