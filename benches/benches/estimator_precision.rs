@@ -7,9 +7,14 @@
 //! Group `estimate precision shapes`: the other light shapes whose f32
 //! kernels have loops of their own (a close tilted disk, a triangle and a
 //! square seen from below), under the strategies that hit-test or sample
-//! them, 2¹⁶ samples. Without these rows the f32 path ran 3–11 times slower
-//! than f64 on them unnoticed (hit tests called per sample, fields loaded
-//! by masked gathers, disk directions drawn one at a time).
+//! them, 2¹⁶ samples, and a sky cap (tilted 17°) and the uniform sky.
+//! Without these rows the f32 path ran 3–11 times slower than f64 on them
+//! unnoticed (hit tests called per sample, fields loaded by masked
+//! gathers, disk directions drawn one at a time); with them in f64 only
+//! for the disk and the polygons, f64 light sampling of caps and skies
+//! (a sampler called out of line per sample, 6× slower than inline) and
+//! f32 MIS on the square (its density's containment test out of line,
+//! 10×) went unnoticed too.
 
 use std::hint::black_box;
 
@@ -20,7 +25,7 @@ use lambert_benches::config;
 use lambert_estimator::estimation::{estimate, EstimateConfig, SequenceKind};
 use lambert_estimator::precision::Precision;
 use lambert_estimator::strategy::{Heuristic, Strategy};
-use lambert_light::emitter::{DiskLight, PolygonLight, SphereLight};
+use lambert_light::emitter::{DiskLight, PolygonLight, Sky, SkyCap, SphereLight};
 use lambert_light::{Emitter, Receiver, Scene};
 
 const SAMPLES: u64 = 1 << 20;
@@ -117,10 +122,13 @@ fn shapes(c: &mut Criterion) {
         true,
     )
     .unwrap();
+    let cap = SkyCap::new(DVec3::new(0.3, 0.0, 1.0), 20f64.to_radians(), 1.0).unwrap();
     let scenes = [
         ("disk", Emitter::Disk(disk)),
         ("triangle", Emitter::Polygon(triangle)),
         ("square", Emitter::Polygon(square)),
+        ("sky cap", Emitter::SkyCap(cap)),
+        ("sky", Emitter::Sky(Sky::new(1.0).unwrap())),
     ];
     let mut g = c.benchmark_group("estimate precision shapes");
     g.throughput(Throughput::Elements(SHAPE_SAMPLES));
