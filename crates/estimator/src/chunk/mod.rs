@@ -237,8 +237,10 @@ mod tests {
     use crate::estimation::prepare;
     use crate::strategy::{Strategy, Technique};
     use glam::DVec2;
-    use lambert_light::builtin::builtin_scenes;
-    use lambert_light::emitter::Emitter;
+    use glam::DVec3;
+    use lambert_light::builtin::{builtin_scenes, NamedScene};
+    use lambert_light::emitter::{Emitter, PolygonLight};
+    use lambert_light::Scene;
     use lambert_sampling::sequence::{Sobol, Stratified};
 
     /// One sample's value by the one-sample path,
@@ -299,15 +301,44 @@ mod tests {
         (Estimate::from_values(&values), nonzero)
     }
 
-    /// Every built-in scene × strategy × instruction set: the block kernels
-    /// give the chunk estimate of the old path to the bit, for a full chunk
-    /// and a partial one.
+    /// Polygons of more vertices than the built-in scenes have: a tilted
+    /// one-sided pentagon and a two-sided hexagon, whose hit tests take the
+    /// padded loop of eight edges (`PolygonFromOrigin::padded`), and a
+    /// nonagon, which takes the general test.
+    fn many_sided_scenes() -> Vec<NamedScene> {
+        let polygon = |n: u32, two_sided: bool| {
+            let vertices = (0..n)
+                .map(|k| {
+                    let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+                    // Counter-clockwise seen from below: the front faces the receiver.
+                    DVec3::new(a.cos(), -a.sin(), 2.0 + 0.4 * a.cos())
+                })
+                .collect();
+            Emitter::Polygon(PolygonLight::new(vertices, 1.5, two_sided).unwrap())
+        };
+        let receiver = Receiver::new(DVec3::ZERO, DVec3::Z).unwrap();
+        [
+            ("pentagon", 5, false),
+            ("hexagon", 6, true),
+            ("nonagon", 9, false),
+        ]
+        .into_iter()
+        .map(|(name, n, two_sided)| NamedScene {
+            name,
+            scene: Scene::new(receiver, vec![polygon(n, two_sided)]).unwrap(),
+        })
+        .collect()
+    }
+
+    /// Every built-in scene and [`many_sided_scenes`] × strategy ×
+    /// instruction set: the block kernels give the chunk estimate of the
+    /// old path to the bit, for a full chunk and a partial one.
     #[test]
     fn blocks_lanes_and_instruction_sets_keep_every_bit() {
         // Sphere light sampling's chunks with every sample a hit and with
         // some missed: both of its kernel's paths are compared.
         let mut sphere_paths = [0; 2];
-        for named in builtin_scenes() {
+        for named in builtin_scenes().into_iter().chain(many_sided_scenes()) {
             let receiver = named.scene.receiver;
             for strategy in std::iter::once(Strategy::Auto).chain(Strategy::ALL) {
                 let (prepared, _) = prepare(&named.scene, strategy);

@@ -226,6 +226,9 @@ impl PreparedEmitter {
                 if let Some(lit) = polygon_lookup::<4>(e, p) {
                     return technique_batch(self, receiver, lit, light, pdf, &block, out);
                 }
+                if let Some(lit) = polygon_lookup::<MAX_PADDED_VERTICES>(e, p) {
+                    return technique_batch(self, receiver, lit, light, pdf, &block, out);
+                }
                 technique_batch(
                     self,
                     receiver,
@@ -502,18 +505,24 @@ fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
     f
 }
 
+/// The most vertices a polygon's ray test is prepared for
+/// ([`polygon_lookup`], padded): polygons of 5 to 8 vertices share one
+/// loop of 8 edges (one more copy of the loops per instruction set, not
+/// four); larger ones take the general test.
+const MAX_PADDED_VERTICES: usize = 8;
+
 /// `PolygonLight::radiance_toward` from the point `origin`, for a polygon
-/// of exactly `N` vertices, with the ray test prepared once for that point
-/// ([`PolygonFromOrigin`]): the same answer to the bit, in a fixed,
+/// of at most `N` vertices, with the ray test prepared once for that point
+/// ([`PolygonFromOrigin::padded`]): the same answer to the bit, in a fixed,
 /// branch-free edge loop that vectorises (the general test is a call per
-/// sample into a loop over the vertices). `None` when the polygon does not
-/// have `N` vertices.
+/// sample into a loop over the vertices). `None` when the polygon has more
+/// than `N` vertices.
 #[inline(always)]
 fn polygon_lookup<const N: usize>(
     polygon: &PolygonLight,
     origin: DVec3,
 ) -> Option<impl Fn(DVec3) -> f64> {
-    let seen = PolygonFromOrigin::<N>::new(&polygon.polygon, origin)?;
+    let seen = PolygonFromOrigin::<N>::padded(&polygon.polygon, origin)?;
     let (radiance, two_sided, facing) = (
         polygon.radiance,
         polygon.two_sided,

@@ -615,6 +615,16 @@ impl PreparedEmitterF32 {
                         out,
                     );
                 }
+                // 5 to 8 vertices: one loop of 8 edges, the last repeated
+                // (`PolygonFromOrigin::padded`, as the f64 kernels do).
+                if let Some(seen) = PolygonFromOrigin::<8>::padded(q, origin) {
+                    return self.technique_batch(
+                        #[inline(always)]
+                        |w| lit && seen.hits(w),
+                        &block,
+                        out,
+                    );
+                }
                 self.technique_batch(
                     #[inline(always)]
                     |w| {
