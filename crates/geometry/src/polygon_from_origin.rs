@@ -56,20 +56,11 @@ macro_rules! polygon_from_origin_impl {
             /// `polygon` seen from `origin`, or `None` if it does not have
             /// exactly `N` vertices.
             pub fn new(polygon: &ConvexPolygon, origin: V3) -> Option<Self> {
-                let v = polygon.vertices();
-                if v.len() != N {
+                // With exactly N vertices the padded form pads nothing.
+                if polygon.vertices().len() != N {
                     return None;
                 }
-                let normal = polygon.normal();
-                let starts: [V3; N] = std::array::from_fn(|k| v[k]);
-                let edges = std::array::from_fn(|k| v[(k + 1) % N] - v[k]);
-                Some(PolygonFromOrigin {
-                    origin,
-                    normal,
-                    numerator: normal.dot(v[0] - origin),
-                    starts,
-                    edges,
-                })
+                Self::padded(polygon, origin)
             }
 
             /// `polygon` seen from `origin`, for any vertex count from 3 to
