@@ -280,13 +280,28 @@ pub(super) fn reduce(h: u64, m: u32) -> u32 {
 /// point's cost.
 #[inline(always)]
 pub(super) fn hash_u32(key: u64, j: u32) -> u32 {
+    let x = hash_u32_high(key, j);
+    x ^ (x >> 15)
+}
+
+/// [`hash_u32`] without its last step, `x ⊕ (x ≫ 15)`, which changes only
+/// the low 17 bits of `x`: the top [`HASH_HIGH_EXACT_BITS`] = 15 bits of
+/// the two agree (the rest differ). A kernel that reads no more than the top
+/// 15 bits of a hash (the power-of-two kernel's shifts, `h ≫ (32 − log₂ m)`
+/// for sides `m ≤ 2¹⁵`, and its f32 jitters, `h ≫ (p + 8)` for `N = 2ᵖ ≥
+/// 2⁹`) takes these and skips a shift and an exclusive or per hash, the
+/// same values to the bit.
+#[inline(always)]
+pub(super) fn hash_u32_high(key: u64, j: u32) -> u32 {
     let mut x = j ^ key as u32;
     x ^= x >> 16;
     x = x.wrapping_mul(0x21f0_aaad);
     x ^= x >> 15;
-    x = x.wrapping_mul(0x735a_2d97);
-    x ^ (x >> 15)
+    x.wrapping_mul(0x735a_2d97)
 }
+
+/// How many top bits [`hash_u32_high`] shares with [`hash_u32`]: 15.
+pub(super) const HASH_HIGH_EXACT_BITS: u32 = 15;
 
 /// `⌊h · m / 2³²⌋ ∈ 0..m`: [`reduce`] for a 32-bit hash (Lemire 2019),
 /// each value of `0..m` within `m/2³²` (relative) of probability `1/m`.
@@ -676,6 +691,10 @@ pub(super) trait Coordinate: Sized {
 
     /// The coordinate on a power-of-two grid.
     fn from_power_of_two(grid: &Grid, power_of_two: PowerOfTwoGrid, parts: (u32, u32)) -> Self;
+
+    /// How many top bits of the jitter `h` [`Coordinate::from_power_of_two`]
+    /// reads (the power-of-two kernel hashes no more of them than it must).
+    fn power_of_two_jitter_bits(power_of_two: PowerOfTwoGrid) -> u32;
 }
 
 impl Coordinate for f64 {
@@ -688,6 +707,12 @@ impl Coordinate for f64 {
     fn from_power_of_two(grid: &Grid, _: PowerOfTwoGrid, parts: (u32, u32)) -> f64 {
         f64::from_parts(grid, parts)
     }
+
+    /// All 32: the f64 sum `k·2³² + h` keeps every jitter bit for `N ≤ 2²¹`.
+    #[inline(always)]
+    fn power_of_two_jitter_bits(_: PowerOfTwoGrid) -> u32 {
+        32
+    }
 }
 
 impl Coordinate for f32 {
@@ -699,6 +724,11 @@ impl Coordinate for f32 {
     #[inline(always)]
     fn from_power_of_two(_: &Grid, power_of_two: PowerOfTwoGrid, parts: (u32, u32)) -> f32 {
         power_of_two.unit_f32(parts)
+    }
+
+    #[inline(always)]
+    fn power_of_two_jitter_bits(power_of_two: PowerOfTwoGrid) -> u32 {
+        power_of_two.f32_jitter_bits()
     }
 }
 
@@ -717,7 +747,8 @@ pub(super) fn fill_pass<T: Coordinate>(
     y: &mut [T],
 ) {
     if let Some(power_of_two) = grid.power_of_two {
-        power_of_two.fill_pass(keys, dim, first, x, y, |parts| {
+        let jitter_bits = T::power_of_two_jitter_bits(power_of_two);
+        power_of_two.fill_pass(keys, dim, first, x, y, jitter_bits, |parts| {
             T::from_power_of_two(grid, power_of_two, parts)
         });
         return;
@@ -971,6 +1002,31 @@ mod tests {
                 assert_eq!(reduce_u32_narrow(h, m), want(h, m), "h {h:#x} m {m}");
             }
         }
+    }
+
+    /// The hash cut short shares its top [`HASH_HIGH_EXACT_BITS`] bits with
+    /// the whole hash, on keys and positions spread over `u32` and at its
+    /// ends; and (negative control) not one bit more: the 16th bit from the
+    /// top differs for about half of them, so a kernel that read 16 bits of
+    /// the short hash would change values.
+    #[test]
+    fn a_hash_cut_short_keeps_its_top_15_bits() {
+        let top = |x: u32, bits: u32| x >> (32 - bits);
+        let mut differ_at_16 = 0;
+        let mut count = 0;
+        for key in [0u64, 7, 0x243f_6a88_85a3_08d3, u64::MAX] {
+            let positions = (0..4096u32).chain([u32::MAX, u32::MAX - 1, 1 << 31]);
+            for j in positions.map(|j| j.wrapping_mul(0x9e37_79b9)) {
+                let (whole, short) = (hash_u32(key, j), hash_u32_high(key, j));
+                let bits = HASH_HIGH_EXACT_BITS;
+                assert_eq!(top(whole, bits), top(short, bits), "key {key:#x} j {j}");
+                differ_at_16 += usize::from(top(whole, bits + 1) != top(short, bits + 1));
+                count += 1;
+            }
+        }
+        // The 16th bit from the top is x's 16th xor its top bit: different for about
+        // half; a third is far below that, and far above none.
+        assert!(differ_at_16 > count / 3, "{differ_at_16} of {count}");
     }
 
     /// Negative control for the test above: a batch of another request (other

@@ -37,7 +37,9 @@
 //! ns per sample) and, for `N ≤ 2²⁴` (a stratum at least one f32 step
 //! wide), never leaves its stratum.
 
-use super::stratified_batch::{golden_unit, hash_u32, Domain, PairKeys};
+use super::stratified_batch::{
+    golden_unit, hash_u32, hash_u32_high, Domain, PairKeys, HASH_HIGH_EXACT_BITS,
+};
 
 /// `x ≫ s`, and 0 for `s ≥ 32` (Rust's `>>` wraps the count). One
 /// instruction in vector lanes: x86's variable shifts (`vpsrlvd`) give 0
@@ -108,12 +110,51 @@ impl PowerOfTwoGrid {
         top as f32 * (1.0 / 16_777_216.0)
     }
 
+    /// How many top jitter bits [`PowerOfTwoGrid::unit_f32`] reads:
+    /// `(24 − p)⁺`, the bits of `h ≫ (p + 8)`.
+    #[inline(always)]
+    pub(super) fn f32_jitter_bits(self) -> u32 {
+        24u32.saturating_sub(self.log_n)
+    }
+
     /// Positions `first … first + len − 1` of one pass in dimensions
     /// `(dim, dim + 1)`: `x[k]`, `y[k]` = `store((k_x, h_x))`,
     /// `store((k_y, h_y))`, the stratum and the 32 jitter bits of each axis
-    /// (`stratified_batch::fill_pass`, whose values these are).
+    /// (`stratified_batch::fill_pass`, whose values these are), of which
+    /// `store` reads no more than the top `jitter_bits`.
+    ///
+    /// The shifts read the top `log₂ nx` and `log₂ ny` bits of their hashes;
+    /// where those and `jitter_bits` are at most
+    /// [`HASH_HIGH_EXACT_BITS`], the hashes skip their last step
+    /// ([`hash_u32_high`]), the same values to the bit (every `N` from 2⁹
+    /// to 2³⁰ in f32; the shifts alone for `N ≤ 2³⁰` in f64). Measured on
+    /// `N = 2²⁰` in f32: 0.74 → 0.65 ns per point.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn fill_pass<T>(
+        self,
+        keys: &PairKeys,
+        dim: u64,
+        first: u32,
+        x: &mut [T],
+        y: &mut [T],
+        jitter_bits: u32,
+        store: impl Fn((u32, u32)) -> T,
+    ) {
+        let short_shifts = self.log_nx.max(self.log_ny) <= HASH_HIGH_EXACT_BITS;
+        let short_jitter = jitter_bits <= HASH_HIGH_EXACT_BITS;
+        match (short_shifts, short_jitter) {
+            (true, true) => self.fill::<T, true, true>(keys, dim, first, x, y, store),
+            (true, false) => self.fill::<T, true, false>(keys, dim, first, x, y, store),
+            // Sides above 2¹⁵ (N > 2³⁰): every hash whole.
+            (false, _) => self.fill::<T, false, false>(keys, dim, first, x, y, store),
+        }
+    }
+
+    /// [`PowerOfTwoGrid::fill_pass`] with the shifts' and the jitters'
+    /// hashes cut short ([`hash_u32_high`]) or whole, as the flags say.
+    #[inline(always)]
+    fn fill<T, const SHORT_SHIFTS: bool, const SHORT_JITTER: bool>(
         self,
         keys: &PairKeys,
         dim: u64,
@@ -122,6 +163,13 @@ impl PowerOfTwoGrid {
         y: &mut [T],
         store: impl Fn((u32, u32)) -> T,
     ) {
+        let hash = |short: bool, key: u64, j: u32| {
+            if short {
+                hash_u32_high(key, j)
+            } else {
+                hash_u32(key, j)
+            }
+        };
         let (n_mask, nx_mask, ny_mask) = self.masks();
         let (log_nx, log_ny) = (self.log_nx, self.log_ny);
         let domain = Domain::new(n_mask.wrapping_add(1).max(1));
@@ -139,12 +187,12 @@ impl PowerOfTwoGrid {
             let column_spread = c.wrapping_mul(self.column_unit) & nx_mask;
             let row_spread = r.wrapping_mul(self.row_unit) & ny_mask;
             // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), 0 for log = 0.
-            let s = shr_or_zero(hash_u32(keys.sigma, c), 32 - log_ny);
-            let t = shr_or_zero(hash_u32(keys.tau, r), 32 - log_nx);
+            let s = shr_or_zero(hash(SHORT_SHIFTS, keys.sigma, c), 32 - log_ny);
+            let t = shr_or_zero(hash(SHORT_SHIFTS, keys.tau, r), 32 - log_nx);
             let kx = (c << log_ny) | ((row_spread + s) & ny_mask);
             let ky = (r << log_nx) | ((column_spread + t) & nx_mask);
-            *x = store((kx, hash_u32(jitter_x, i)));
-            *y = store((ky, hash_u32(jitter_y, i)));
+            *x = store((kx, hash(SHORT_JITTER, jitter_x, i)));
+            *y = store((ky, hash(SHORT_JITTER, jitter_y, i)));
         }
     }
 }
