@@ -52,6 +52,7 @@ mod soa;
 mod sphere;
 mod sphere_light;
 mod spherical;
+mod spherical_fan;
 mod spherical_rectangle;
 mod spherical_triangle;
 mod triangle;
@@ -102,6 +103,7 @@ macro_rules! public_api {
         };
         pub use crate::sphere_light::$p::{SphereLightSampler, SphereSolidAngle};
         pub use crate::spherical::$p::{azimuth_fraction, direction_from, one_minus_cos_theta};
+        pub use crate::spherical_fan::$p::SphericalFan;
         pub use crate::spherical_rectangle::$p::SphericalRectangle;
         pub use crate::spherical_triangle::$p::SphericalTriangle;
         pub use crate::triangle::$p::UniformTriangle;

@@ -263,10 +263,14 @@ macro_rules! spherical_triangle_impl {
             /// and a sample drawn on an edge carries that much rounding, so
             /// this keeps pdf(sample(u)) equal to the returned pdf. It widens
             /// the support by a band of width 32ε rad along the boundary.
-            #[inline]
+            ///
+            /// Inline and branch-free (`&`, not `&&`: the same answer, no
+            /// side effects), so that a batch loop testing several
+            /// triangles per sample vectorises.
+            #[inline(always)]
             pub fn contains(&self, w: V3) -> bool {
                 let tol = -32.0 * Real::EPSILON;
-                w.dot(self.n_ab) >= tol && w.dot(self.n_bc) >= tol && w.dot(self.n_ca) >= tol
+                (w.dot(self.n_ab) >= tol) & (w.dot(self.n_bc) >= tol) & (w.dot(self.n_ca) >= tol)
             }
 
             /// The density 1/Ω per steradian of the unit direction `w` if it
