@@ -5,16 +5,19 @@
 //! strategy is the figure to quote (the README's estimate section does).
 //!
 //! Group `estimate precision shapes`: the other light shapes whose f32
-//! kernels have loops of their own (a close tilted disk, a triangle and a
-//! square seen from below), under the strategies that hit-test or sample
-//! them, 2¹⁶ samples, and a sky cap (tilted 17°) and the uniform sky.
+//! kernels have loops of their own (a close tilted disk, a triangle, a
+//! square and a pentagon seen from below), under the strategies that
+//! hit-test or sample them, 2¹⁶ samples, and a sky cap (tilted 17°) and
+//! the uniform sky.
 //! Without these rows the f32 path ran 3–11 times slower than f64 on them
 //! unnoticed (hit tests called per sample, fields loaded by masked
 //! gathers, disk directions drawn one at a time); with them in f64 only
 //! for the disk and the polygons, f64 light sampling of caps and skies
 //! (a sampler called out of line per sample, 6× slower than inline) and
 //! f32 MIS on the square (its density's containment test out of line,
-//! 10×) went unnoticed too.
+//! 10×) went unnoticed too, and without the pentagon light sampling and
+//! MIS of polygons of five or more vertices (a spherical fan's triangle
+//! looked up per sample, out of line).
 
 use std::hint::black_box;
 
@@ -122,11 +125,24 @@ fn shapes(c: &mut Criterion) {
         true,
     )
     .unwrap();
+    // A regular pentagon: seen as a fan of three spherical triangles.
+    let pentagon = PolygonLight::new(
+        (0..5)
+            .map(|k| {
+                let a = std::f64::consts::TAU * f64::from(k) / 5.0;
+                DVec3::new(1.2 * a.cos(), 1.2 * a.sin(), 2.0)
+            })
+            .collect(),
+        1.0,
+        true,
+    )
+    .unwrap();
     let cap = SkyCap::new(DVec3::new(0.3, 0.0, 1.0), 20f64.to_radians(), 1.0).unwrap();
     let scenes = [
         ("disk", Emitter::Disk(disk)),
         ("triangle", Emitter::Polygon(triangle)),
         ("square", Emitter::Polygon(square)),
+        ("pentagon", Emitter::Polygon(pentagon)),
         ("sky cap", Emitter::SkyCap(cap)),
         ("sky", Emitter::Sky(Sky::new(1.0).unwrap())),
     ];

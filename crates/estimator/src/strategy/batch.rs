@@ -27,14 +27,14 @@ use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
     sample_uniform_hemisphere, ConeCosine, LightSample, LightSampler, PolygonAreaSampler,
-    PolygonSolidAngle, SphereSolidAngle, TabulatedDiskSolidAngle,
+    PolygonSolidAngle, SphereSolidAngle, SphericalFan, TabulatedDiskSolidAngle,
 };
 use lambert_sampling::isa::Isa;
 
 use super::cone_mis::ConeMis;
 use super::cone_window::CosineWindow;
 use super::emitter_light::{
-    disk_table_direction, sample_cap, sample_disk, sample_disk_table, sample_polygon,
+    disk_table_direction, sample_cap, sample_disk, sample_disk_table, sample_fan, sample_polygon,
     sample_rectangle, sample_single_triangle, sample_sky, sample_sphere,
 };
 use super::{
@@ -171,11 +171,13 @@ impl PreparedEmitter {
                 // to what the polygon looks like from here, inline in the
                 // loop (so it vectorises): one spherical triangle of a
                 // triangle light, or the spherical rectangle of a
-                // rectangle, each with its own vertex count's lookup. Only
-                // those two techniques are compiled for them (each pairing
-                // is one more copy of the loops per instruction set). The
-                // rest, and other polygons, take `PolygonSolidAngle::sample`,
-                // which looks the fan's triangle up per sample.
+                // rectangle, each with its own vertex count's lookup, and a
+                // fan of up to `MAX_SPHERICAL_FAN` triangles in fixed lanes
+                // (`SphericalFan`) with the padded lookup. Only those two
+                // techniques are compiled for them (each pairing is one
+                // more copy of the loops per instruction set). The rest,
+                // and larger fans, take `PolygonSolidAngle::sample`, which
+                // looks the fan's triangle up per sample.
                 if let (Some(single), Some(lit)) =
                     (poly.single_triangle(), polygon_lookup::<3>(e, p))
                 {
@@ -206,6 +208,25 @@ impl PreparedEmitter {
                         |_, u| sample_rectangle(r, u),
                         #[inline(always)]
                         |w| r.pdf(w),
+                        &block,
+                        out,
+                    ) {
+                        return hits;
+                    }
+                }
+                if let (Some(fan), Some(lit)) = (
+                    SphericalFan::<MAX_SPHERICAL_FAN>::new(poly),
+                    polygon_lookup::<MAX_PADDED_VERTICES>(e, p),
+                ) {
+                    let fan = &{ fan };
+                    if let Some(hits) = sampled_batch(
+                        self,
+                        receiver,
+                        lit,
+                        #[inline(always)]
+                        |_, u| sample_fan(fan, u),
+                        #[inline(always)]
+                        |w| fan.pdf(w),
                         &block,
                         out,
                     ) {
@@ -504,6 +525,14 @@ const MIS_GROUP: usize = 8;
 fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
     f
 }
+
+/// The most triangles of a polygon's spherical fan that light sampling
+/// and MIS run in fixed lanes ([`SphericalFan`]), in f64 and f32: polygons
+/// of up to eight vertices, as [`MAX_PADDED_VERTICES`] (a fan of `n`
+/// vertices has `n − 2` triangles), and a seven-sided one cut by the
+/// horizon. One size for all, padded: each size is one more copy of the
+/// light and MIS loops per instruction set.
+pub(super) const MAX_SPHERICAL_FAN: usize = 6;
 
 /// The most vertices a polygon's ray test is prepared for
 /// ([`polygon_lookup`], padded): polygons of 5 to 8 vertices share one

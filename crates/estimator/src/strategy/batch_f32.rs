@@ -30,10 +30,11 @@ use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
     sample_uniform_sphere, ConeCosine, LightSample, LightSampler, PolygonAreaSampler,
-    PolygonSolidAngle, TabulatedDiskSolidAngle, UniformCone,
+    PolygonSolidAngle, SphericalFan, TabulatedDiskSolidAngle, UniformCone,
 };
 use lambert_sampling::isa::Isa;
 
+use super::batch::MAX_SPHERICAL_FAN;
 use super::cone_mis::ConeMisF32;
 use super::cone_window::CosineWindowF32;
 use super::prepared_f32::{Area, Light, PreparedEmitterF32, Projected, Shape};
@@ -714,10 +715,11 @@ impl PreparedEmitterF32 {
                 #[inline(always)]
                 |u| 4.0 * PI * normal.dot(sample_uniform_sphere(u)).max(0.0),
             ),
-            // One spherical triangle or a spherical rectangle is sampled
-            // inline, as a vectorised loop (the same values as
-            // `PolygonSolidAngle::sample`); a fan of several looks its
-            // triangle up per sample.
+            // One spherical triangle, a spherical rectangle or a fan of up
+            // to `MAX_SPHERICAL_FAN` triangles in fixed lanes
+            // (`SphericalFan`) is sampled inline, as a vectorised loop (the
+            // same values as `PolygonSolidAngle::sample`); a larger fan
+            // looks its triangle up per sample.
             Light::Polygon(p) => {
                 if let Some(t) = p.single_triangle() {
                     let t = &{ t };
@@ -741,6 +743,19 @@ impl PreparedEmitterF32 {
                         #[inline(always)]
                         |u| {
                             let s = r.sample_point(u);
+                            cos_over_pdf(normal, s.direction, s.pdf)
+                        },
+                    );
+                }
+                if let Some(fan) = SphericalFan::<MAX_SPHERICAL_FAN>::new(p) {
+                    let fan = &{ fan };
+                    return single(
+                        radiance,
+                        block,
+                        out,
+                        #[inline(always)]
+                        |u| {
+                            let s = fan.sample(u);
                             cos_over_pdf(normal, s.direction, s.pdf)
                         },
                     );
@@ -961,7 +976,8 @@ impl PreparedEmitterF32 {
                 out,
             ),
             Light::Polygon(p) => {
-                // As in `light_batch`: one triangle or a rectangle inline.
+                // As in `light_batch`: one triangle, a rectangle or a
+                // fan in fixed lanes inline.
                 if let Some(t) = p.single_triangle() {
                     let t = &{ t };
                     return self.mis_loop(
@@ -988,6 +1004,22 @@ impl PreparedEmitterF32 {
                         #[inline(always)]
                         |u| {
                             let s = r.sample_point(u);
+                            (s.direction, s.pdf)
+                        },
+                        block,
+                        out,
+                    );
+                }
+                if let Some(fan) = SphericalFan::<MAX_SPHERICAL_FAN>::new(p) {
+                    let fan = &{ fan };
+                    return self.mis_loop(
+                        h,
+                        sees,
+                        #[inline(always)]
+                        |w| fan.pdf(w),
+                        #[inline(always)]
+                        |u| {
+                            let s = fan.sample(u);
                             (s.direction, s.pdf)
                         },
                         block,

@@ -8,7 +8,7 @@ use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_uniform_sphere, sample_uniform_sphere, DiskLightSampler, DiskSolidAngle,
     PolygonLightSampler, PolygonSolidAngle, SingleTriangle, SphereLightSampler, SphereSolidAngle,
-    SphericalRectangle, TabulatedDiskSolidAngle, UniformCone,
+    SphericalFan, SphericalRectangle, TabulatedDiskSolidAngle, UniformCone,
 };
 
 /// A direction toward a light with its density per steradian.
@@ -183,6 +183,18 @@ pub(super) fn sample_polygon(p: &PolygonSolidAngle, u: DVec2) -> Option<LightDir
 #[inline(always)]
 pub(super) fn sample_single_triangle(t: &SingleTriangle, u: DVec2) -> Option<LightDirection> {
     let d = t.sample(u);
+    checked(d.direction, d.pdf)
+}
+
+/// [`EmitterLight::sample`] of a polygon seen as a fan of several
+/// spherical triangles, in fixed lanes: the same direction and density as
+/// [`sample_polygon`], without the per-sample search of the fan's table.
+#[inline(always)]
+pub(super) fn sample_fan<const N: usize>(
+    fan: &SphericalFan<N>,
+    u: DVec2,
+) -> Option<LightDirection> {
+    let d = fan.sample(u);
     checked(d.direction, d.pdf)
 }
 
