@@ -93,7 +93,7 @@ macro_rules! disk_table_impl {
 
         /// One node τⱼ of the table: K(τⱼ) = j K(π/2)/J up to the root's
         /// rounding, and what the interval [τⱼ, τⱼ₊₁] needs.
-        #[derive(Clone, Copy, Debug, PartialEq)]
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
         struct Node {
             /// τⱼ, and sin τⱼ, cos τⱼ as the solver returned them (the
             /// quadrature rotates from these, not from τⱼ).
@@ -339,24 +339,42 @@ macro_rules! disk_table_impl {
             ) {
                 let m = ux.len().min(uy.len()).min(TABLE_LANES);
                 let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
-                let mut interval = [0usize; TABLE_LANES];
+                // Each sample's start node, copied into lanes (structure
+                // of arrays): the passes below then load their fields
+                // with plain vector loads. Indexing the table in them (a
+                // gather per field per pass) kept the last pass scalar in
+                // f64: 72 → 27 ns per direction in f64, 53 → 15 in f32,
+                // the same directions (a disk seen from the side, AVX-512).
                 let mut offset = [0.0 as Real; TABLE_LANES];
                 let mut sum = [0.0 as Real; TABLE_LANES];
+                let mut sins = [0.0 as Real; TABLE_LANES];
+                let mut coss = [0.0 as Real; TABLE_LANES];
+                let mut sectors = [0.0 as Real; TABLE_LANES];
+                let mut rules = [0u8; TABLE_LANES];
                 for i in 0..m {
                     let (j, x) = self.table_start(nodes, self.disk.quadrant(ux[i]).1);
-                    (interval[i], offset[i]) = (j, x);
+                    let a = &nodes[j.min(Self::INTERVALS - 1)];
+                    offset[i] = x;
+                    (sins[i], coss[i], sectors[i], rules[i]) = (a.sin, a.cos, a.sector, a.gauss);
                 }
+                let node = |i: usize| Node {
+                    sin: sins[i],
+                    cos: coss[i],
+                    sector: sectors[i],
+                    gauss: rules[i],
+                    ..Node::default()
+                };
                 // Points beyond a sample's own rule add +0 (`GAUSS_PADDED`).
                 for k in 0..self.most_points.min(8) {
                     for i in 0..m {
-                        let a = &nodes[interval[i].min(Self::INTERVALS - 1)];
+                        let a = &node(i);
                         let (y, w) = GAUSS_PADDED[usize::from(a.gauss).min(8)][k];
                         sum[i] += self.gauss_term(a, offset[i], y, w);
                     }
                 }
                 for i in 0..m {
                     let (q, target) = self.disk.quadrant(ux[i]);
-                    let a = &nodes[interval[i].min(Self::INTERVALS - 1)];
+                    let a = &node(i);
                     let (sin, cos, answered) = self.halley_finish(a, offset[i], sum[i], target);
                     let w = self.disk.world(self.disk.local_direction(q, sin, cos, uy[i]));
                     // NaN marks a sample to redo (a direction is never NaN).
