@@ -58,6 +58,7 @@ mod spherical_triangle;
 mod triangle;
 mod triangle_light;
 mod trig;
+mod uniform_solid_angle;
 
 pub use error::SamplingError;
 pub use horizon_clip::MAX_POLYGON_VERTICES;
@@ -109,6 +110,7 @@ macro_rules! public_api {
         pub use crate::triangle::$p::UniformTriangle;
         pub use crate::triangle_light::$p::{TriangleLightSampler, TriangleSolidAngle};
         pub use crate::trig::$p::{cos_2pi, sin, sin_cos, sin_cos_2pi, sin_cos_quarter};
+        pub use crate::uniform_solid_angle::$p::UniformSolidAngle;
     };
 }
 

@@ -27,15 +27,15 @@ use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_cosine_hemisphere, pdf_uniform_hemisphere, pdf_uniform_sphere, sample_cosine_hemisphere,
     sample_uniform_hemisphere, ConeCosine, LightSample, LightSampler, PolygonAreaSampler,
-    PolygonSolidAngle, SphereSolidAngle, SphericalFan, TabulatedDiskSolidAngle,
+    PolygonSolidAngle, SphereSolidAngle, SphericalFan, TabulatedDiskSolidAngle, UniformSolidAngle,
 };
 use lambert_sampling::isa::Isa;
 
 use super::cone_mis::ConeMis;
 use super::cone_window::CosineWindow;
 use super::emitter_light::{
-    disk_table_direction, sample_cap, sample_disk, sample_disk_table, sample_fan, sample_polygon,
-    sample_rectangle, sample_single_triangle, sample_sky, sample_sphere,
+    disk_table_direction, sample_cap, sample_disk, sample_disk_table, sample_polygon, sample_sky,
+    sample_solid_angle, sample_sphere,
 };
 use super::{
     EmitterArea, EmitterLight, EmitterProjected, Heuristic, LightDirection, PartHits,
@@ -181,36 +181,15 @@ impl PreparedEmitter {
                 if let (Some(single), Some(lit)) =
                     (poly.single_triangle(), polygon_lookup::<3>(e, p))
                 {
-                    let single = &{ single };
-                    if let Some(hits) = sampled_batch(
-                        self,
-                        receiver,
-                        lit,
-                        #[inline(always)]
-                        |_, u| sample_single_triangle(single, u),
-                        #[inline(always)]
-                        |w| single.pdf(w),
-                        &block,
-                        out,
-                    ) {
+                    if let Some(hits) = solid_angle_batch(self, receiver, lit, &single, &block, out)
+                    {
                         return hits;
                     }
                 }
                 if let (PolygonSolidAngle::Rectangle(r), Some(lit)) =
                     (poly, polygon_lookup::<4>(e, p))
                 {
-                    let r = &{ *r };
-                    if let Some(hits) = sampled_batch(
-                        self,
-                        receiver,
-                        lit,
-                        #[inline(always)]
-                        |_, u| sample_rectangle(r, u),
-                        #[inline(always)]
-                        |w| r.pdf(w),
-                        &block,
-                        out,
-                    ) {
+                    if let Some(hits) = solid_angle_batch(self, receiver, lit, r, &block, out) {
                         return hits;
                     }
                 }
@@ -218,18 +197,7 @@ impl PreparedEmitter {
                     SphericalFan::<MAX_SPHERICAL_FAN>::new(poly),
                     polygon_lookup::<MAX_PADDED_VERTICES>(e, p),
                 ) {
-                    let fan = &{ fan };
-                    if let Some(hits) = sampled_batch(
-                        self,
-                        receiver,
-                        lit,
-                        #[inline(always)]
-                        |_, u| sample_fan(fan, u),
-                        #[inline(always)]
-                        |w| fan.pdf(w),
-                        &block,
-                        out,
-                    ) {
+                    if let Some(hits) = solid_angle_batch(self, receiver, lit, &fan, &block, out) {
                         return hits;
                     }
                 }
@@ -607,6 +575,33 @@ fn sampled_batch(
         )),
         _ => None,
     }
+}
+
+/// [`sampled_batch`] through a polygon's solid-angle sampler in one of its
+/// inline forms ([`UniformSolidAngle`]), copied into the loop so that its
+/// constants stay in registers (through a reference, the compiler reloaded
+/// them and did not vectorise).
+#[inline(always)]
+fn solid_angle_batch(
+    emitter: &PreparedEmitter,
+    receiver: &Receiver,
+    radiance: impl Fn(DVec3) -> f64,
+    sampler: &impl UniformSolidAngle,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> Option<PartHits> {
+    let sampler = &{ *sampler };
+    sampled_batch(
+        emitter,
+        receiver,
+        radiance,
+        #[inline(always)]
+        |_, u| sample_solid_angle(sampler, u),
+        #[inline(always)]
+        |w| sampler.density(w),
+        block,
+        out,
+    )
 }
 
 /// Light sampling and MIS of a disk through its tabulated sampler: the

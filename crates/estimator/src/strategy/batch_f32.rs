@@ -30,7 +30,7 @@ use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
     sample_uniform_sphere, ConeCosine, LightSample, LightSampler, PolygonAreaSampler,
-    PolygonSolidAngle, SphericalFan, TabulatedDiskSolidAngle, UniformCone,
+    PolygonSolidAngle, SphericalFan, TabulatedDiskSolidAngle, UniformCone, UniformSolidAngle,
 };
 use lambert_sampling::isa::Isa;
 
@@ -155,6 +155,30 @@ fn single(radiance: f64, block: &Block<'_>, out: &mut [f64], g: impl Fn(Vec2) ->
         out,
         #[inline(always)]
         |u, _| [g(u)],
+    )
+}
+
+/// Light sampling through a polygon's solid-angle sampler in one of its
+/// inline forms ([`UniformSolidAngle`]): cos θ/p per sample, the sampler
+/// copied into the loop so that its constants stay in registers.
+#[inline(always)]
+fn solid_angle_light(
+    sampler: &impl UniformSolidAngle,
+    normal: Vec3,
+    radiance: f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    let sampler = &{ *sampler };
+    single(
+        radiance,
+        block,
+        out,
+        #[inline(always)]
+        |u| {
+            let s = sampler.sample_direction(u);
+            cos_over_pdf(normal, s.direction, s.pdf)
+        },
     )
 }
 
@@ -722,43 +746,13 @@ impl PreparedEmitterF32 {
             // looks its triangle up per sample.
             Light::Polygon(p) => {
                 if let Some(t) = p.single_triangle() {
-                    let t = &{ t };
-                    return single(
-                        radiance,
-                        block,
-                        out,
-                        #[inline(always)]
-                        |u| {
-                            let s = t.sample(u);
-                            cos_over_pdf(normal, s.direction, s.pdf)
-                        },
-                    );
+                    return solid_angle_light(&t, normal, radiance, block, out);
                 }
                 if let PolygonSolidAngle::Rectangle(r) = p {
-                    let r = &{ *r };
-                    return single(
-                        radiance,
-                        block,
-                        out,
-                        #[inline(always)]
-                        |u| {
-                            let s = r.sample_point(u);
-                            cos_over_pdf(normal, s.direction, s.pdf)
-                        },
-                    );
+                    return solid_angle_light(r, normal, radiance, block, out);
                 }
                 if let Some(fan) = SphericalFan::<MAX_SPHERICAL_FAN>::new(p) {
-                    let fan = &{ fan };
-                    return single(
-                        radiance,
-                        block,
-                        out,
-                        #[inline(always)]
-                        |u| {
-                            let s = fan.sample(u);
-                            cos_over_pdf(normal, s.direction, s.pdf)
-                        },
-                    );
+                    return solid_angle_light(&fan, normal, radiance, block, out);
                 }
                 single(
                     radiance,
@@ -979,52 +973,13 @@ impl PreparedEmitterF32 {
                 // As in `light_batch`: one triangle, a rectangle or a
                 // fan in fixed lanes inline.
                 if let Some(t) = p.single_triangle() {
-                    let t = &{ t };
-                    return self.mis_loop(
-                        h,
-                        sees,
-                        #[inline(always)]
-                        |w| t.pdf(w),
-                        #[inline(always)]
-                        |u| {
-                            let s = t.sample(u);
-                            (s.direction, s.pdf)
-                        },
-                        block,
-                        out,
-                    );
+                    return self.solid_angle_mis(h, sees, &t, block, out);
                 }
                 if let PolygonSolidAngle::Rectangle(r) = p {
-                    let r = &{ *r };
-                    return self.mis_loop(
-                        h,
-                        sees,
-                        #[inline(always)]
-                        |w| r.pdf(w),
-                        #[inline(always)]
-                        |u| {
-                            let s = r.sample_point(u);
-                            (s.direction, s.pdf)
-                        },
-                        block,
-                        out,
-                    );
+                    return self.solid_angle_mis(h, sees, r, block, out);
                 }
                 if let Some(fan) = SphericalFan::<MAX_SPHERICAL_FAN>::new(p) {
-                    let fan = &{ fan };
-                    return self.mis_loop(
-                        h,
-                        sees,
-                        #[inline(always)]
-                        |w| fan.pdf(w),
-                        #[inline(always)]
-                        |u| {
-                            let s = fan.sample(u);
-                            (s.direction, s.pdf)
-                        },
-                        block,
-                        out,
-                    );
+                    return self.solid_angle_mis(h, sees, &fan, block, out);
                 }
                 self.mis_loop(
                     h,
@@ -1101,6 +1056,34 @@ impl PreparedEmitterF32 {
                 out,
             ),
         }
+    }
+
+    /// [`Self::mis_loop`] through a polygon's solid-angle sampler in one of
+    /// its inline forms ([`UniformSolidAngle`]), copied into the loop so
+    /// that its constants stay in registers.
+    #[inline(always)]
+    fn solid_angle_mis(
+        &self,
+        h: Heuristic,
+        sees: impl Fn(Vec3) -> bool,
+        sampler: &impl UniformSolidAngle,
+        block: &Block<'_>,
+        out: &mut [f64],
+    ) -> PartHits {
+        let sampler = &{ *sampler };
+        self.mis_loop(
+            h,
+            sees,
+            #[inline(always)]
+            |w| sampler.density(w),
+            #[inline(always)]
+            |u| {
+                let s = sampler.sample_direction(u);
+                (s.direction, s.pdf)
+            },
+            block,
+            out,
+        )
     }
 
     /// MIS: the weighted cosine-sampled g from `u` plus the weighted

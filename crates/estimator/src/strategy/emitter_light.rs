@@ -7,8 +7,8 @@ use lambert_light::emitter::Emitter;
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
     pdf_uniform_sphere, sample_uniform_sphere, DiskLightSampler, DiskSolidAngle,
-    PolygonLightSampler, PolygonSolidAngle, SingleTriangle, SphereLightSampler, SphereSolidAngle,
-    SphericalFan, SphericalRectangle, TabulatedDiskSolidAngle, UniformCone,
+    PolygonLightSampler, PolygonSolidAngle, SphereLightSampler, SphereSolidAngle,
+    TabulatedDiskSolidAngle, UniformCone, UniformSolidAngle,
 };
 
 /// A direction toward a light with its density per steradian.
@@ -177,33 +177,15 @@ pub(super) fn sample_polygon(p: &PolygonSolidAngle, u: DVec2) -> Option<LightDir
     checked(l.direction, l.pdf)
 }
 
-/// [`EmitterLight::sample`] of a polygon seen as one spherical triangle:
-/// the same direction and density as [`sample_polygon`], without the
-/// fan's table lookup.
+/// [`EmitterLight::sample`] of a polygon through the form its sampler
+/// takes at the point when that form samples inline
+/// ([`UniformSolidAngle`]: one spherical triangle, a spherical rectangle,
+/// a fan of triangles in fixed lanes): the same direction and density as
+/// [`sample_polygon`], without the fan's table lookup.
 #[inline(always)]
-pub(super) fn sample_single_triangle(t: &SingleTriangle, u: DVec2) -> Option<LightDirection> {
-    let d = t.sample(u);
+pub(super) fn sample_solid_angle(s: &impl UniformSolidAngle, u: DVec2) -> Option<LightDirection> {
+    let d = s.sample_direction(u);
     checked(d.direction, d.pdf)
-}
-
-/// [`EmitterLight::sample`] of a polygon seen as a fan of several
-/// spherical triangles, in fixed lanes: the same direction and density as
-/// [`sample_polygon`], without the per-sample search of the fan's table.
-#[inline(always)]
-pub(super) fn sample_fan<const N: usize>(
-    fan: &SphericalFan<N>,
-    u: DVec2,
-) -> Option<LightDirection> {
-    let d = fan.sample(u);
-    checked(d.direction, d.pdf)
-}
-
-/// [`EmitterLight::sample`] of a rectangle: its spherical rectangle, as
-/// [`sample_polygon`] samples it (the point on the light is not formed).
-#[inline(always)]
-pub(super) fn sample_rectangle(r: &SphericalRectangle, u: DVec2) -> Option<LightDirection> {
-    let s = r.sample_point(u);
-    checked(s.direction, s.pdf)
 }
 
 /// [`EmitterLight::sample`] of a disk: its spherical ellipse.
