@@ -248,7 +248,11 @@ macro_rules! trig_impl {
         /// ```
         #[inline(always)]
         pub fn cos_2pi(u: Real) -> Real {
-            let t = u.min(1.0 - u);
+            // A select, not `f64::min`: the same value for every u (a NaN
+            // u makes 1 − u NaN too), without `min`'s NaN rule, which cost
+            // a compare and a blend beside the vector minimum.
+            let flipped = 1.0 - u;
+            let t = if flipped < u { flipped } else { u };
             let y = (0.25 - t) * (2.0 * PI);
             y * estrin(y * y, &SIN_HALF_PI)
         }

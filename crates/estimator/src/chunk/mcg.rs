@@ -128,10 +128,14 @@ impl McgStream {
                 lanes.output(group);
                 lanes.step(step);
             }
-            // Only the last span can end inside a group of lanes.
-            let mut last = [0u64; LANES];
-            lanes.output(&mut last);
-            bits[full..m].copy_from_slice(&last[..m - full]);
+            // Only the last span can end inside a group of lanes. Tested,
+            // not done unconditionally: an empty copy still called
+            // `memcpy` once per span, and the call spilled the lanes.
+            if full < m {
+                let mut last = [0u64; LANES];
+                lanes.output(&mut last);
+                bits[full..m].copy_from_slice(&last[..m - full]);
+            }
             for ((xk, yk), &b) in xs.iter_mut().zip(ys.iter_mut()).zip(&bits[..m]) {
                 (*xk, *yk) = point(b);
             }
