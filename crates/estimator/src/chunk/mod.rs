@@ -125,7 +125,7 @@ pub fn independent_chunk(
 ) -> ChunkResult {
     let stream = McgStream::seed_from_u64(chunk_seed);
     with_scratch(n, prepared.len(), |s| {
-        isa.run(
+        isa.run_without_gfni(
             #[inline(always)]
             || {
                 let mut hits = vec![[0u64; 2]; prepared.len()];

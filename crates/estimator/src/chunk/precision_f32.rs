@@ -197,7 +197,7 @@ pub fn independent_chunk_f32(
         })
         .collect();
     with_scratch(n, f32s, |s| {
-        isa.run(
+        isa.run_without_gfni(
             #[inline(always)]
             || {
                 let mut hits = vec![[0u64; 2]; prepared.len()];

@@ -44,7 +44,9 @@ use super::{
 
 impl PreparedEmitter {
     /// [`add_batch`](Self::add_batch) compiled for instruction set `isa`
-    /// ([`Isa::run`]): the same values to the bit in every set.
+    /// ([`Isa::run_without_gfni`]: the kernels have no bit reversal, so a
+    /// GFNI processor runs the AVX-512 copy): the same values to the bit in
+    /// every set.
     ///
     /// This is the one place the f64 kernels are instantiated, once per
     /// set. It is never inlined, so a chunk loop that calls it per block
@@ -66,7 +68,7 @@ impl PreparedEmitter {
         out: &mut [f64],
         store: Store,
     ) -> PartHits {
-        isa.run(
+        isa.run_without_gfni(
             #[inline(always)]
             || self.add_batch(receiver, ux, uy, vx, vy, out, store),
         )

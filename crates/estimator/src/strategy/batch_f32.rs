@@ -513,7 +513,8 @@ fn hoisted<A, R, F: Fn(A) -> R>(f: F) -> F {
 
 impl PreparedEmitterF32 {
     /// [`add_batch`](Self::add_batch) compiled for instruction set `isa`
-    /// ([`Isa::run`]): the same values to the bit in every set. The one
+    /// ([`Isa::run_without_gfni`], as the f64 kernels): the same values to the
+    /// bit in every set. The one
     /// place the f32 kernels are instantiated, once per set, and never
     /// inlined, for the reason [`PreparedEmitter::add_batch_in`](super::PreparedEmitter::add_batch_in)
     /// gives.
@@ -529,7 +530,7 @@ impl PreparedEmitterF32 {
         out: &mut [f64],
         store: Store,
     ) -> PartHits {
-        isa.run(
+        isa.run_without_gfni(
             #[inline(always)]
             || self.add_batch(ux, uy, vx, vy, out, store),
         )

@@ -144,7 +144,7 @@ pub(super) fn tile(
     y: (u32, u32),
     s: &mut Scratch,
 ) -> RayCounts {
-    isa.run(
+    isa.run_without_gfni(
         #[inline(always)]
         || trace_tile(scene, camera, config, isa, x, y, s),
     )
@@ -328,7 +328,7 @@ fn generation(
     s.nearest.resize(n, f64::INFINITY);
     s.ids.clear();
     s.ids.resize(n, NONE);
-    isa.run(
+    isa.run_without_gfni(
         #[inline(always)]
         || aggregate.nearest_in_batch(&s.batch, &mut s.nearest, &mut s.ids),
     );
@@ -380,7 +380,7 @@ fn generation(
     s.batch.assign(&s.shadow);
     s.blocked.clear();
     s.blocked.resize(s.shadow.len(), false);
-    isa.run(
+    isa.run_without_gfni(
         #[inline(always)]
         || aggregate.occludes_in_batch(&s.batch, &s.shadow_t_max, &mut s.blocked),
     );
