@@ -55,6 +55,8 @@ mod spherical;
 mod spherical_fan;
 mod spherical_rectangle;
 mod spherical_triangle;
+#[cfg(test)]
+mod test_shapes;
 mod triangle;
 mod triangle_light;
 mod trig;

@@ -145,14 +145,7 @@ mod tests {
                 use lambert_geometry::$p::ConvexPolygon;
                 use $crate::$p::{LightSampler, PolygonAreaSampler};
                 type R = lambert_geometry::precision::$p::Real;
-                let ring = |n: usize, z: R| {
-                    (0..n)
-                        .map(|k| {
-                            let a = k as R / n as R * std::$p::consts::TAU + 0.3;
-                            $v3::new(0.2 + 0.9 * a.cos(), -0.1 + 0.6 * a.sin(), z)
-                        })
-                        .collect::<Vec<_>>()
-                };
+                use $crate::test_shapes::$p::ring;
                 let receivers = [
                     ($v3::ZERO, $v3::Z),
                     ($v3::new(0.5, 0.2, 0.0), $v3::new(0.6, 0.0, 0.8)),

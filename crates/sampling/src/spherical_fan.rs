@@ -149,14 +149,7 @@ mod tests {
                 use lambert_geometry::$p::ConvexPolygon;
                 use $crate::$p::{PolygonLightSampler, PolygonSolidAngle, SphericalFan};
                 type R = lambert_geometry::precision::$p::Real;
-                let ring = |n: usize, z: R| {
-                    (0..n)
-                        .map(|k| {
-                            let a = k as R / n as R * std::$p::consts::TAU + 0.3;
-                            $v3::new(0.2 + 0.9 * a.cos(), -0.1 + 0.6 * a.sin(), z)
-                        })
-                        .collect::<Vec<_>>()
-                };
+                use $crate::test_shapes::$p::ring;
                 let tilted = $v3::new(0.8, 0.0, 0.6);
                 let cases = [
                     (3, $v3::new(0.0, 0.0, 0.5), tilted), // cut: a quadrilateral
