@@ -29,8 +29,9 @@ use glam::{Vec2, Vec3};
 use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
-    sample_uniform_sphere, ConeCosine, LightSample, LightSampler, PolygonAreaSampler,
-    PolygonSolidAngle, SphericalFan, TabulatedDiskSolidAngle, UniformCone, UniformSolidAngle,
+    sample_uniform_sphere, ConeCosine, DirectionSample, LightSample, LightSampler,
+    PolygonAreaSampler, PolygonSolidAngle, SphericalFan, TabulatedDiskSolidAngle, UniformCone,
+    UniformSolidAngle,
 };
 use lambert_sampling::isa::Isa;
 
@@ -170,14 +171,70 @@ fn solid_angle_light(
     out: &mut [f64],
 ) -> PartHits {
     let sampler = &{ *sampler };
+    scored(
+        normal,
+        radiance,
+        block,
+        out,
+        #[inline(always)]
+        |u| sampler.sample_direction(u),
+    )
+}
+
+/// What light sampling scores of a drawn sample: its direction and that
+/// direction's density, 0 where the sampler drew nothing.
+trait DirectionAndDensity {
+    /// (ω, p(ω)).
+    fn direction_and_density(&self) -> (Vec3, f32);
+}
+
+impl DirectionAndDensity for DirectionSample {
+    #[inline(always)]
+    fn direction_and_density(&self) -> (Vec3, f32) {
+        (self.direction, self.pdf)
+    }
+}
+
+impl DirectionAndDensity for LightSample {
+    #[inline(always)]
+    fn direction_and_density(&self) -> (Vec3, f32) {
+        (self.direction, self.pdf)
+    }
+}
+
+/// No sample: density 0, which [`cos_over_pdf`] scores 0, the value the
+/// kernels gave a `None` before they shared [`scored`].
+impl DirectionAndDensity for Option<LightSample> {
+    #[inline(always)]
+    fn direction_and_density(&self) -> (Vec3, f32) {
+        match self {
+            Some(s) => (s.direction, s.pdf),
+            None => (Vec3::ZERO, 0.0),
+        }
+    }
+}
+
+/// cos θ/p of every sample `sample(u)` draws ([`cos_over_pdf`]), stored
+/// by [`single`]: the loop of every sampler scored by its direction and
+/// density alone. Callers mark `sample` `#[inline(always)]`: a closure
+/// left to the compiler was called out of line, outside the kernel's
+/// instruction set, and made these loops about ten times slower.
+#[inline(always)]
+fn scored<S: DirectionAndDensity>(
+    normal: Vec3,
+    radiance: f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+    sample: impl Fn(Vec2) -> S,
+) -> PartHits {
     single(
         radiance,
         block,
         out,
         #[inline(always)]
         |u| {
-            let s = sampler.sample_direction(u);
-            cos_over_pdf(normal, s.direction, s.pdf)
+            let (direction, pdf) = sample(u).direction_and_density();
+            cos_over_pdf(normal, direction, pdf)
         },
     )
 }
@@ -220,15 +277,13 @@ fn polygon_area_batch(
         out: &mut [f64],
     ) -> Option<PartHits> {
         let fan = sampler.fan::<N>(Vec3::ZERO, normal)?;
-        Some(single(
+        Some(scored(
+            normal,
             radiance,
             block,
             out,
             #[inline(always)]
-            |u| {
-                let s = fan.sample_or_zero(u);
-                cos_over_pdf(normal, s.direction, s.pdf)
-            },
+            |u| fan.sample_or_zero(u),
         ))
     }
     // Plain branches, as in the f64 kernel.
@@ -755,15 +810,13 @@ impl PreparedEmitterF32 {
                 if let Some(fan) = SphericalFan::<MAX_SPHERICAL_FAN>::new(p) {
                     return solid_angle_light(&fan, normal, radiance, block, out);
                 }
-                single(
+                scored(
+                    normal,
                     radiance,
                     block,
                     out,
                     #[inline(always)]
-                    |u| match p.sample(u) {
-                        Some(s) => cos_over_pdf(normal, s.direction, s.pdf),
-                        None => 0.0,
-                    },
+                    |u| p.sample(u),
                 )
             }
             Light::Disk(d) => disk_light_batch(d, normal, radiance, block, out),
@@ -789,25 +842,21 @@ impl PreparedEmitterF32 {
             // Every lane drawn, none dropped by a branch (density 0 where
             // `sample` gives none, which `cos_over_pdf` scores 0): the
             // loops vectorise.
-            Area::Sphere(a) => single(
+            Area::Sphere(a) => scored(
+                normal,
                 radiance,
                 block,
                 out,
                 #[inline(always)]
-                |u| {
-                    let s = a.sample_or_zero(origin, u);
-                    cos_over_pdf(normal, s.direction, s.pdf)
-                },
+                |u| a.sample_or_zero(origin, u),
             ),
-            Area::Disk(a) => single(
+            Area::Disk(a) => scored(
+                normal,
                 radiance,
                 block,
                 out,
                 #[inline(always)]
-                |u| {
-                    let s = a.sample_or_zero(origin, u);
-                    cos_over_pdf(normal, s.direction, s.pdf)
-                },
+                |u| a.sample_or_zero(origin, u),
             ),
             Area::Polygon(a) => polygon_area_batch(a, normal, radiance, &through, block, out),
             Area::None => [0, 0],
@@ -864,47 +913,39 @@ impl PreparedEmitterF32 {
                 // is all the estimate needs (the same bits as `sample`).
                 if let Some(whole) = s.whole() {
                     let whole = &whole;
-                    return single(
+                    return scored(
+                        normal,
                         radiance,
                         block,
                         out,
                         #[inline(always)]
-                        |u| {
-                            let d = whole.sample_direction(u);
-                            cos_over_pdf(normal, d.direction, d.pdf)
-                        },
+                        |u| whole.sample_direction(u),
                     );
                 }
-                single(
+                scored(
+                    normal,
                     radiance,
                     block,
                     out,
                     #[inline(always)]
-                    |u| {
-                        let d = s.sample_direction(u);
-                        cos_over_pdf(normal, d.direction, d.pdf)
-                    },
+                    |u| s.sample_direction(u),
                 )
             }
-            Projected::Polygon(p) => single(
+            Projected::Polygon(p) => scored(
+                normal,
                 radiance,
                 block,
                 out,
                 #[inline(always)]
-                |u| {
-                    let l = p.sample(u);
-                    cos_over_pdf(normal, l.direction, l.pdf)
-                },
+                |u| p.sample(u),
             ),
-            Projected::PolygonFan(s) => single(
+            Projected::PolygonFan(s) => scored(
+                normal,
                 radiance,
                 block,
                 out,
                 #[inline(always)]
-                |u| match s.sample(origin, normal, u) {
-                    Some(l) => cos_over_pdf(normal, l.direction, l.pdf),
-                    None => 0.0,
-                },
+                |u| s.sample(origin, normal, u),
             ),
             Projected::None => [0, 0],
         }
