@@ -137,24 +137,13 @@ impl Isa {
             #[cfg(target_arch = "x86_64")]
             Isa::Avx512Gfni => match V4Gfni::try_new() {
                 Some(simd) => simd.vectorize(f),
-                None => Isa::Avx512.run(f),
+                None => Isa::Avx512.run_without_gfni(f),
             },
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx512 => match pulp::x86::V4::try_new() {
-                Some(simd) => simd.vectorize(f),
-                None => Isa::Avx2Fma.run(f),
-            },
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx2Fma => match pulp::x86::V3::try_new() {
-                Some(simd) => simd.vectorize(f),
-                None => f(),
-            },
-            _ => f(),
+            // The narrower sets: the same dispatch as without GFNI.
+            _ => self.run_without_gfni(f),
         }
     }
-}
 
-impl Isa {
     /// [`run`](Self::run) for code that has no use for GFNI: with
     /// [`Isa::Avx512Gfni`] it runs the [`Isa::Avx512`] copy, so `f` is
     /// compiled three times instead of four. The compiler uses GFNI only
