@@ -333,7 +333,13 @@ impl Rare {
     /// standard deviation is at most c·√(events/(N − 1)) (independent), and
     /// the spread of R replicate means, each at most c·events_r/n, is at
     /// most c·events·√(R/(R − 1))/N (randomized QMC).
+    /// No events: every value of these parts was 0, and so is their
+    /// spread, whatever the bound (which overflows to ∞ for an emitter
+    /// whose values pass f64's range, where c·0 would be NaN).
     fn std_error(&self, n: u64, source: ErrorSource) -> f64 {
+        if self.events == 0 {
+            return 0.0;
+        }
         let (c, k, nf) = (self.bound, self.events as f64, n as f64);
         match source {
             ErrorSource::Samples => c * (k / (nf - 1.0)).sqrt() / nf.sqrt(),
@@ -434,6 +440,12 @@ pub fn honest_interval(summary: &SampleSummary, parts: &[PartTally], level: f64)
     }
     let warning = warning.map(|(w, _)| w);
     let clt = |level: f64, se: f64| {
+        // A standard error past f64's range (a rare part's bound that
+        // overflowed) bounds nothing: the whole line, which `finite` clips
+        // to [0, f64::MAX].
+        if !se.is_finite() {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        }
         let dof_n = match summary.source {
             ErrorSource::Samples => n,
             ErrorSource::Replicates(r) => r,
@@ -583,6 +595,32 @@ mod tests {
         let p = hit_probability_upper(0, 100_000, 0.001);
         assert!((h.ci.0 - (0.5 - q * 1e-3)).abs() < 1e-15);
         assert!((h.ci.1 - (0.5 + q * 1e-3 + 10.0 * p)).abs() < 1e-15);
+    }
+
+    /// A rare part whose bound overflows (an emitter of radiance near
+    /// f64::MAX): with no event its spread is 0, not ∞·0; with one, the
+    /// standard error is infinite and the interval the whole of [0, f64::MAX],
+    /// for independent samples and for replicates alike (fuzz seed 1, case
+    /// 176; both panicked in builds with debug assertions, on a NaN or
+    /// infinite standard error, and gave [0, f64::MAX] through a NaN in
+    /// release builds).
+    #[test]
+    fn an_overflowing_rare_part_gives_a_finite_interval() {
+        for source in [ErrorSource::Samples, ErrorSource::Replicates(16)] {
+            for events in [0, 3] {
+                let parts = [
+                    tally(1.0, PartShape::Bounded, 50_000),
+                    tally(f64::INFINITY, PartShape::Bounded, events),
+                ];
+                let s = SampleSummary {
+                    source,
+                    ..summary(100_000, 0.5, 1e-3)
+                };
+                let h = honest_interval(&s, &parts, LEVEL);
+                assert_eq!(h.ci, (0.0, f64::MAX), "{source:?}, {events} events");
+                assert_eq!(h.std_error, 1e-3);
+            }
+        }
     }
 
     /// A constant part (cosine sampling of a sky): the CLT interval with the
