@@ -17,7 +17,8 @@
 //!
 //! Runs are deterministic from `--seed` (case `i` depends only on the seed
 //! and `i`). Inputs found failing are kept in the regression corpus
-//! (`fuzz/corpus/`, [`corpus`]), replayed by `cargo test -p lambert-fuzz`.
+//! (`fuzz/corpus/`, [`corpus`]), replayed by `cargo test` (the CLI crate's
+//! `tests/fuzz_corpus.rs`, through the `lambert` binary that run built).
 //!
 //! Structure-aware generation in the manner of grammar-based fuzzers
 //! (Godefroid, Kiezun & Levin 2008, "Grammar-based whitebox fuzzing"),

@@ -7,11 +7,20 @@
 //! lies outside the CLI, and are only reported on (a case that no longer
 //! fails is reported as ready to move to `fixed/`).
 //!
-//! The binary is `$LAMBERT_BIN` if set, else built here with
-//! `cargo build --release -p lambert-cli` (a no-op when up to date).
+//! The binary is `$LAMBERT_BIN` if set (to replay the corpus through
+//! another build, e.g. the release one), else this package's own
+//! `lambert`, which cargo builds for these tests with the profile they run
+//! in: under `cargo test`, the test profile, optimised and with debug
+//! assertions and overflow checks, so an input that trips one of them
+//! fails here (two fixed cases did: a NaN standard error, which release
+//! builds passed on silently, the interval coming out [0, f64::MAX]).
+//!
+//! This test lives in the CLI crate, not in `lambert-fuzz` (which links no
+//! lambert crate), so that it replays the binary the same `cargo test`
+//! built: from the fuzz crate it had to build the CLI itself, a second,
+//! release build of the whole workspace inside the test run.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Duration;
 
 use lambert_fuzz::corpus::{self, Entry};
@@ -27,41 +36,16 @@ const OPEN_LIMIT: Duration = Duration::from_secs(2);
 
 fn corpus_dir(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("corpus")
+        .join("../../fuzz/corpus")
         .join(name)
 }
 
-/// The lambert binary: `$LAMBERT_BIN`, or the release build of lambert-cli
-/// (built now if needed; cargo reports the executable's path).
+/// The lambert binary: `$LAMBERT_BIN`, or the one cargo built for these
+/// tests.
 fn lambert() -> PathBuf {
-    if let Some(p) = std::env::var_os("LAMBERT_BIN") {
-        return PathBuf::from(p);
-    }
-    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let out = Command::new(env!("CARGO"))
-        .current_dir(&workspace)
-        .args([
-            "build",
-            "--release",
-            "-p",
-            "lambert-cli",
-            "--bin",
-            "lambert",
-            "--message-format=json",
-        ])
-        .output()
-        .expect("cargo runs");
-    assert!(
-        out.status.success(),
-        "cargo build -p lambert-cli failed:\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
-        .filter(|m| m["reason"] == "compiler-artifact" && m["target"]["name"] == "lambert")
-        .find_map(|m| m["executable"].as_str().map(PathBuf::from))
-        .expect("cargo reports the lambert executable")
+    std::env::var_os("LAMBERT_BIN")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_lambert")))
 }
 
 fn load(name: &str) -> Vec<Entry> {
