@@ -333,6 +333,7 @@ impl Rare {
     /// standard deviation is at most c·√(events/(N − 1)) (independent), and
     /// the spread of R replicate means, each at most c·events_r/n, is at
     /// most c·events·√(R/(R − 1))/N (randomized QMC).
+    ///
     /// No events: every value of these parts was 0, and so is their
     /// spread, whatever the bound (which overflows to ∞ for an emitter
     /// whose values pass f64's range, where c·0 would be NaN).
