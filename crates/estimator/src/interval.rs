@@ -324,6 +324,16 @@ impl Rare {
         (self.bound * hit_probability_upper(self.events, n, alpha)).min(self.known_share)
     }
 
+    /// The most their events can have moved the sample mean: c·events/N,
+    /// and 0 with no event whatever the bound (which overflows to ∞ for an
+    /// emitter whose values pass f64's range, where c·0 would be NaN).
+    fn observed_share(&self, n: u64) -> f64 {
+        if self.events == 0 {
+            return 0.0;
+        }
+        self.bound * self.events as f64 / n as f64
+    }
+
     fn is_empty(&self) -> bool {
         self.bound == 0.0 && self.events == 0
     }
@@ -486,15 +496,8 @@ pub fn honest_interval(summary: &SampleSummary, parts: &[PartTally], level: f64)
     let (clt_lo, clt_hi) = clt(clt_level, std_error);
     let se = std_error + above.std_error(n, summary.source) + below.std_error(n, summary.source);
     let (lo, hi) = clt(clt_level, se);
-    let nf = n as f64;
-    let lo = lo
-        - above.bound * above.events as f64 / nf
-        - below.share_upper(n, alpha_rare)
-        - count_slack;
-    let hi = hi
-        + above.share_upper(n, alpha_rare)
-        + below.bound * below.events as f64 / nf
-        + count_slack;
+    let lo = lo - above.observed_share(n) - below.share_upper(n, alpha_rare) - count_slack;
+    let hi = hi + above.share_upper(n, alpha_rare) + below.observed_share(n) + count_slack;
     // The sampled parts are never negative: E ≥ δ.
     let ci = (lo.max(delta), hi);
     let half_width = 0.5 * (clt_hi - clt_lo);
@@ -599,15 +602,20 @@ mod tests {
     }
 
     /// A rare part whose bound overflows (an emitter of radiance near
-    /// f64::MAX): with no event its spread is 0, not ∞·0; with one, the
-    /// standard error is infinite and the interval the whole of [0, f64::MAX],
-    /// for independent samples and for replicates alike (fuzz seed 1, case
-    /// 176; both panicked in builds with debug assertions, on a NaN or
+    /// f64::MAX), for independent samples and for replicates alike. With
+    /// no event its spread and its observed share are 0, not ∞·0: the
+    /// lower end is the CLT one (the part can only add to the mean) and
+    /// the upper end f64::MAX. With events, the standard error is infinite
+    /// and the interval the whole of [0, f64::MAX]. (Fuzz seed 1, case
+    /// 176: both panicked in builds with debug assertions, on a NaN or
     /// infinite standard error, and gave [0, f64::MAX] through a NaN in
-    /// release builds).
+    /// release builds.)
     #[test]
     fn an_overflowing_rare_part_gives_a_finite_interval() {
-        for source in [ErrorSource::Samples, ErrorSource::Replicates(16)] {
+        for (source, dof_n) in [
+            (ErrorSource::Samples, 100_000),
+            (ErrorSource::Replicates(16), 16),
+        ] {
             for events in [0, 3] {
                 let parts = [
                     tally(1.0, PartShape::Bounded, 50_000),
@@ -618,8 +626,13 @@ mod tests {
                     ..summary(100_000, 0.5, 1e-3)
                 };
                 let h = honest_interval(&s, &parts, LEVEL);
-                assert_eq!(h.ci, (0.0, f64::MAX), "{source:?}, {events} events");
-                assert_eq!(h.std_error, 1e-3);
+                let case = format!("{source:?}, {events} events: {:?}", h.ci);
+                // The CLT part's lower end at the shared level, computed
+                // the same way: equal to the bit.
+                let q = ConfidenceInterval::new(0.5, 1e-3, dof_n, 1.0 - 0.009).quantile;
+                let lower = if events == 0 { 0.5 - q * 1e-3 } else { 0.0 };
+                assert_eq!(h.ci, (lower, f64::MAX), "{case}");
+                assert_eq!(h.std_error, 1e-3, "{case}");
             }
         }
     }
