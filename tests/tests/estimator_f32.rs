@@ -289,7 +289,21 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// 2,184 rows), the 273 rows of the tilted, straddling and several-lights
 /// spheres and the sky cap that use a cone's light samples are new draws
 /// and no other row moved; per strategy and sequence the geometric mean
-/// of the new to the old relative RMSE lies between 0.87 and 1.06.)
+/// of the new to the old relative RMSE lies between 0.87 and 1.06.
+/// Re-pinned when the f32 coordinates of stratified points on grids that
+/// are not powers of two (N ≤ 2²⁴ per replicate; 10 007 samples here)
+/// became the nearest f32 to the coordinate with its jitter cut to 24 −
+/// ⌈log₂ N⌉ bits, computed in f32 lanes, instead of the f64 coordinate
+/// rounded down: the digest was 0xb7d5_c468_46c3_2132. The f64 points
+/// did not move, and the changed f32 ones lie within 2⁻²² of them.
+/// Compared with the CLI on seven of the built-in scenes written as scene
+/// files (the sky cap, the small coaxial and the close offset disks, the
+/// tilted and straddling spheres, the triangle, the grazing rectangle), 7
+/// strategies, stratified f32 at
+/// 10 007, 160 000 and 1 600 000 samples, seeds 1–8 (147 rows): the
+/// geometric mean of the new to the old relative RMSE is 1.000 (0.93 to
+/// 1.11), 122 rows equal to three digits, and the 99 % intervals cover
+/// the closed form in 1,163 of 1,176 runs before and after.)
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -307,7 +321,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0xb7d5_c468_46c3_2132;
+const PINNED: u64 = 0x044f_586d_0614_1ece;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

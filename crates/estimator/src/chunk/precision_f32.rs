@@ -12,12 +12,14 @@
 //!   sample i's point (MIS's second point `n` points later), with the
 //!   chunk's instruction set ([`SplitMix64::fill_2d_f32_in`]).
 //! - **Randomized-QMC sequences** give their f32 points
-//!   ([`SampleSequence::fill_2d_split_f32`]): the f64 chunk's points
-//!   rounded down to 24 bits, ⌊2²⁴u⌋/2²⁴
+//!   ([`SampleSequence::fill_2d_split_f32`]): Sobol's are the f64 chunk's
+//!   points rounded down to 24 bits, ⌊2²⁴u⌋/2²⁴
 //!   ([`lambert_sampling::sequence::round_down_24`]), so a point set keeps
-//!   its strata down to cells of 2⁻²⁴ (stratified points of a power-of-two
-//!   count are the exact points rounded down, the same up to 2²¹ per
-//!   replicate: `lambert_sampling::sequence::Stratified`).
+//!   its strata down to cells of 2⁻²⁴; stratified points are computed in
+//!   f32 (for up to 2²⁴ samples per replicate, each coordinate with its
+//!   jitter cut to what an f32 shows, rounded to nearest: within 2⁻²² of
+//!   the f64 point and never past its stratum's upper edge;
+//!   `lambert_sampling::sequence::Stratified`).
 //!
 //! An emitter that runs in f64 ([`crate::strategy::F32Fallback`]) gets the
 //! f64 chunk's coordinates (the `Pcg64Mcg` stream, or the sequence's

@@ -47,6 +47,7 @@ mod sobol_table;
 mod splitmix;
 pub mod stratified;
 mod stratified_batch;
+mod stratified_f32;
 mod stratified_pow2;
 #[cfg(test)]
 mod value_stability;
@@ -162,14 +163,18 @@ pub trait SampleSequence: Clone + Send + Sync {
     /// [`fill_2d_split`](SampleSequence::fill_2d_split) rounded down to 24
     /// bits: `x[k]` is [`round_down_24`] of the f64 `x[k]`, to the bit, so
     /// the f32 points keep the f64 points' strata down to cells of `2^-24`
-    /// (the points the estimator's f32 path reads). For [`Sobol`] and
-    /// [`Stratified`] these are also the values of
-    /// [`next_2d_f32`](SampleSequence::next_2d_f32); [`Independent`]'s
-    /// `next_2d_f32` draws its f32 values from 32-bit words instead.
+    /// (the points the estimator's f32 path reads). For [`Sobol`] these
+    /// are also the values of [`next_2d_f32`](SampleSequence::next_2d_f32);
+    /// [`Independent`]'s `next_2d_f32` draws its f32 values from 32-bit
+    /// words instead. [`Stratified`] stores its own f32 coordinates, those
+    /// of its `next_2d_f32`, computed in f32 lanes: within `2⁻²²` of the
+    /// f64 ones and never beyond their strata's upper edges (module
+    /// `stratified`).
     ///
     /// The default rounds [`fill_2d_split`](SampleSequence::fill_2d_split)'s
-    /// values in blocks of 256; [`Sobol`] and [`Stratified`] round as they
-    /// store, with no f64 arrays in between.
+    /// values in blocks of 256; [`Sobol`] rounds as it stores and
+    /// [`Stratified`] computes its f32 values directly, with no f64 arrays
+    /// in between.
     ///
     /// # Panics
     /// If `x` and `y` differ in length.

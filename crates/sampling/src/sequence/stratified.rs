@@ -86,18 +86,29 @@
 //! error on the integrands measured above (the old one: 2.0·10⁻² on the
 //! disk, 1.2·10⁻⁷ on the sphere light), and costs less (README, "Speed").
 //!
-//! f32 output is the f64 value truncated to 24 bits, so a point lying within
-//! `2^-24` above a stratum boundary `k/N` may fall just below it in f32.
-//! On a power-of-two grid it is the exact value `(k + ξ)/N` truncated to
-//! 24 bits instead, computed in integers (`stratified_pow2.rs`): the same
-//! bits for `N ≤ 2²¹`; above, one `2⁻²⁴` step lower in the rare
-//! coordinate (about one in `2³⁰`) whose f64 rounding carried across a
-//! step; and for `N ≤ 2²⁴` never outside its stratum. Changed in 2026-12
-//! from the truncated f64 value for `N > 2²¹` only, because the integer
-//! form costs a third as much in vector lanes.
+//! **f32 output** (2-D requests), for `N ≤ 2²⁴`: the coordinate with its
+//! jitter cut to the `s = 24 − ⌈log₂ N⌉` bits an f32 near 1 can show,
+//! `q/M` with `q = k·2ˢ + ⌊h/2^(32−s)⌋` and `M = N·2ˢ ≤ 2²⁴`, rounded to
+//! the nearest f32 (`stratified_f32.rs`, computed in f32 lanes). It never
+//! reaches its stratum's upper edge (nor 1); a point within half an f32
+//! step above the lower edge `k/N` may round just below it. On a
+//! power-of-two grid this is the exact value `(k + ξ)/N` rounded down to
+//! 24 bits. For `N > 2²⁴`, where a stratum near 1 is narrower than an f32
+//! step, the f64 value rounded down to 24 bits, except on power-of-two
+//! grids, whose f32 value stays the exact one rounded down
+//! (`stratified_pow2.rs`, computed in integers). 1-D requests round the
+//! f64 value down to 24 bits.
+//!
+//! **f32 values before 2026-12-06**: every grid's f32 coordinate was the f64
+//! one rounded down to 24 bits (on power-of-two grids above `2²¹` the
+//! exact one rounded down, an earlier change of 2026-12). On the
+//! other grids that route ran in f64 lanes and made an f32 point cost
+//! more than an f64 one; the present values differ from those by less
+//! than `1/M + 2⁻²⁵ < 2⁻²²` and are the same on power-of-two grids up to
+//! `2²⁴` (README, "Speed").
 
 use super::stratified_batch::{cell_of, fill_pass, stream_bits, Coordinate, Grid, PairKeys, BLOCK};
-use super::{assert_split_lengths, hash2, round_down_24, u64_to_f64, SampleSequence};
+use super::{assert_split_lengths, hash2, u64_to_f64, SampleSequence};
 use crate::SamplingError;
 use glam::{DVec2, Vec2};
 
@@ -226,10 +237,17 @@ impl Stratified {
     }
 
     /// Request `request` of samples `first..first + out.len()` from the
-    /// batch kernel, block by block, each point made by `make(x, y)`.
+    /// batch kernel in coordinates of type `C`, block by block, each point
+    /// made by `make(x, y)`.
     #[inline(always)]
-    fn fill_made<T>(&self, first: u64, request: u64, out: &mut [T], make: impl Fn(f64, f64) -> T) {
-        let (mut x, mut y) = ([0.0; BLOCK], [0.0; BLOCK]);
+    fn fill_made<C: Coordinate + Copy + Default, T>(
+        &self,
+        first: u64,
+        request: u64,
+        out: &mut [T],
+        make: impl Fn(C, C) -> T,
+    ) {
+        let (mut x, mut y) = ([C::default(); BLOCK], [C::default(); BLOCK]);
         for (b, out) in out.chunks_mut(BLOCK).enumerate() {
             let (x, y) = (&mut x[..out.len()], &mut y[..out.len()]);
             self.fill_points(first.wrapping_add((b * BLOCK) as u64), request, x, y);
@@ -261,8 +279,10 @@ impl SampleSequence for Stratified {
         self.next_point(Grid::point)
     }
 
-    /// The f64 point rounded down to 24 bits, or on a power-of-two grid
-    /// the exact point rounded down (module docs).
+    /// The point's f32 coordinates (module docs): for `N ≤ 2²⁴` the
+    /// nearest f32 to the coordinate with its jitter cut to `24 − ⌈log₂
+    /// N⌉` bits; above, the f64 point rounded down to 24 bits (on a
+    /// power-of-two grid the exact point rounded down).
     fn next_2d_f32(&mut self) -> Vec2 {
         self.next_point(Grid::point_f32)
     }
@@ -283,24 +303,25 @@ impl SampleSequence for Stratified {
         self.fill_points(first, request, x, y);
     }
 
-    /// The batch kernel, rounding each coordinate down to 24 bits as it
-    /// stores it: no f64 arrays in between.
+    /// The batch kernel, storing [`next_2d_f32`](SampleSequence::next_2d_f32)'s
+    /// coordinates, computed in f32 lanes: no f64 arrays in between.
     #[inline(always)]
     fn fill_2d_split_f32(&self, first: u64, request: u64, x: &mut [f32], y: &mut [f32]) {
         assert_split_lengths("fill_2d_split_f32", x.len(), y.len());
         self.fill_points(first, request, x, y);
     }
 
+    /// The batch kernel in f32: the cursor's
+    /// [`next_2d_f32`](SampleSequence::next_2d_f32) values, to the bit.
     fn fill_2d_f32(&self, first: u64, request: u64, out: &mut [Vec2]) {
-        self.fill_made(first, request, out, |x, y| {
-            Vec2::new(round_down_24(x), round_down_24(y))
-        });
+        self.fill_made(first, request, out, Vec2::new);
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sequence::round_down_24;
 
     #[test]
     fn grids_are_near_square() {
@@ -465,14 +486,18 @@ mod tests {
 
     /// The batch kernels' coordinates, made from a stratum `k` and 32
     /// jitter bits `h` through the fixed-point sum `k·2³² + h`
-    /// (`Grid::unit_of_parts`, `Grid::unit_f32_of_parts`), are those of
-    /// the f64 sum `k + h·2⁻³²`, to the bit, in both precisions: on grids
-    /// below and above 2²¹ (where that sum starts to round) and 2²⁴, at
-    /// the strata's ends and middle, with the jitter's extreme bits and a
-    /// spread of hashed ones.
+    /// (`Grid::unit_of_parts`, `Grid::unit_f32_of_wide_parts`), are those
+    /// of the f64 sum `k + h·2⁻³²`, to the bit, in both precisions: on
+    /// grids below and above 2²¹ (where that sum starts to round) and
+    /// 2²⁴, at the strata's ends and middle, with the jitter's extreme
+    /// bits and a spread of hashed ones. The f32 coordinate
+    /// (`Grid::unit_f32_of_parts`) is `stratified_f32.rs`'s up to `N =
+    /// 2²⁴` and the wide form above, and lies within `2⁻²²` of the f64
+    /// one (module docs: `1/M + 2⁻²⁵`).
     #[test]
     fn coordinates_of_parts_are_those_of_the_rounded_sum() {
         use super::super::stratified_batch::hash_u32;
+        use super::super::stratified_f32::F32Coordinate;
         use super::super::stratified_pow2::jittered_sum;
         for n in [
             1u32,
@@ -496,9 +521,18 @@ mod tests {
                     let x = grid.unit(jittered_sum(k, h));
                     let got = grid.unit_of_parts(k, h);
                     assert_eq!(got.to_bits(), x.to_bits(), "n {n} k {k} h {h}");
-                    let got = grid.unit_f32_of_parts(k, h);
+                    let wide = grid.unit_f32_of_wide_parts(k, h);
                     let want = round_down_24(x);
-                    assert_eq!(got.to_bits(), want.to_bits(), "n {n} k {k} h {h}");
+                    assert_eq!(wide.to_bits(), want.to_bits(), "n {n} k {k} h {h}");
+                    if k >= n {
+                        continue; // k = 1 for n = 1: no such stratum
+                    }
+                    let got = grid.unit_f32_of_parts(k, h);
+                    let form = F32Coordinate::new(n).map_or(wide, |f| f.unit((k, h)));
+                    assert_eq!(got.to_bits(), form.to_bits(), "n {n} k {k} h {h}");
+                    // (The subtraction's rounding is far below the bound.)
+                    let off = (f64::from(got) - x).abs();
+                    assert!(off < 1.0 / 4_194_304.0, "n {n} k {k} h {h}: {off:e}");
                 }
             }
         }

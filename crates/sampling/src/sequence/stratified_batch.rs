@@ -35,6 +35,7 @@
 //! of `stratified_pow2.rs` instead: the same values, with masks and shifts
 //! in place of the tables, carries and reciprocals above.
 
+use super::stratified_f32::F32Coordinate;
 use super::stratified_pow2::{fixed_sum, PowerOfTwoGrid};
 use super::{hash2, mix64};
 use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
@@ -442,8 +443,10 @@ pub(super) struct Grid {
     inv_n_24: f64,
     /// `2⁻³² · inv_n` (exact), [`Grid::unit_of_parts`]'s factor.
     inv_n_m32: f64,
-    /// `2⁻⁸ · inv_n` (exact), [`Grid::unit_f32_of_parts`]'s factor.
+    /// `2⁻⁸ · inv_n` (exact), [`Grid::unit_f32_of_wide_parts`]'s factor.
     inv_n_24_m32: f64,
+    /// The f32 coordinates of `N ≤ 2²⁴` (`stratified_f32.rs`).
+    f32_coordinate: Option<F32Coordinate>,
     /// `cell mod nx` and `cell / nx`.
     by_nx: FastDiv,
     /// `r·g_y mod ny` for every row `r`, with `g_y` = [`golden_unit`]`(ny)`
@@ -488,6 +491,7 @@ impl Grid {
             inv_n_24: 16_777_216.0 / f64::from(n),
             inv_n_m32: (1.0 / f64::from(n)) * TWO_POW_M32,
             inv_n_24_m32: (1.0 / f64::from(n)) * (1.0 / 256.0),
+            f32_coordinate: F32Coordinate::new(n),
             by_nx,
             row_spread,
             column_spread,
@@ -557,6 +561,19 @@ impl Grid {
         (fixed_sum(k, h) * self.inv_n_m32).min(ONE_MINUS_EPSILON)
     }
 
+    /// The f32 coordinate of stratum `k` with jitter bits `h`: for `N ≤
+    /// 2²⁴` the nearest f32 to the coordinate with its jitter cut to
+    /// `24 − ⌈log₂ N⌉` bits (`stratified_f32.rs`), and above
+    /// [`Grid::unit_f32_of_wide_parts`].
+    #[inline(always)]
+    pub(super) fn unit_f32_of_parts(&self, k: u32, h: u32) -> f32 {
+        match self.f32_coordinate {
+            Some(f32_coordinate) => f32_coordinate.unit((k, h)),
+            None => self.unit_f32_of_wide_parts(k, h),
+        }
+    }
+
+    /// For `N > 2²⁴`, where a stratum is narrower than an f32 step near 1:
     /// [`super::round_down_24`]`(`[`Grid::unit_of_parts`]`(k, h))` to the
     /// bit: `min(⌊X · 2⁻³²·2²⁴N⁻¹⌋, 2²⁴ − 1) · 2⁻²⁴`, the product rounded
     /// as in [`Grid::unit_of_parts`] and scaled by 2²⁴ (which commutes
@@ -565,12 +582,8 @@ impl Grid {
     /// scale by 2⁻²⁴ run in f32 lanes, sixteen to an AVX-512 register
     /// where the f64 ones run eight.
     ///
-    /// (It was computed from the f64 sum `k + h·2⁻³²` and clamped and scaled in
-    /// f64: that form was a fifth of a non-power-of-two stratified f32
-    /// estimate's time on a sphere light, measured by a profile on an
-    /// AVX-512 host.)
     #[inline(always)]
-    pub(super) fn unit_f32_of_parts(&self, k: u32, h: u32) -> f32 {
+    pub(super) fn unit_f32_of_wide_parts(&self, k: u32, h: u32) -> f32 {
         const TOP: f32 = 16_777_215.0;
         let floor = (fixed_sum(k, h) * self.inv_n_24_m32).floor() as f32;
         floor.min(TOP) * (1.0 / 16_777_216.0)
@@ -601,12 +614,15 @@ impl Grid {
     #[inline(always)]
     pub(super) fn point_parts(&self, keys: &PairKeys, c: u32, r: u32, i: u32) -> [(u32, u32); 2] {
         let spread = [self.column_spread.get(c), self.row_spread.get(r)];
-        self.spread_parts(keys, [c, r], spread, i, reduce_u32)
+        self.spread_parts(keys, [c, r], spread, i, reduce_u32, hash_u32)
     }
 
     /// The strata `k` and jitter bits `h` (the coordinate is
     /// `(k + h·2⁻³²)/N`) of [`Grid::point`]'s two coordinates, given the
-    /// spread column and row, `c·g_x mod nx` and `r·g_y mod ny`.
+    /// spread column and row, `c·g_x mod nx` and `r·g_y mod ny`. The
+    /// jitters are hashed by `jitter_hash`: [`hash_u32`], or
+    /// [`hash_u32_high`] where the caller reads no more than its top
+    /// [`HASH_HIGH_EXACT_BITS`] bits.
     #[inline(always)]
     fn spread_parts(
         &self,
@@ -615,6 +631,7 @@ impl Grid {
         [column_spread, row_spread]: [u32; 2],
         i: u32,
         reduce: impl Fn(u32, u32) -> u32,
+        jitter_hash: impl Fn(u64, u32) -> u32,
     ) -> [(u32, u32); 2] {
         let (nx, ny) = (self.nx, self.ny);
         let s = reduce(hash_u32(keys.sigma, c), ny);
@@ -623,7 +640,10 @@ impl Grid {
         let ky = r * nx + rotate(column_spread, t, nx);
         // 32 hashed bits per axis, the two halves of the jitter key: a
         // resolution of 2⁻³²/N, finer than the 2⁻³² of a Sobol point.
-        let (high, low) = (hash_u32(keys.jitter, i), hash_u32(keys.jitter >> 32, i));
+        let (high, low) = (
+            jitter_hash(keys.jitter, i),
+            jitter_hash(keys.jitter >> 32, i),
+        );
         [(kx, high), (ky, low)]
     }
 }
@@ -695,6 +715,18 @@ pub(super) trait Coordinate: Sized {
     /// How many top bits of the jitter `h` [`Coordinate::from_power_of_two`]
     /// reads (the power-of-two kernel hashes no more of them than it must).
     fn power_of_two_jitter_bits(power_of_two: PowerOfTwoGrid) -> u32;
+
+    /// [`fill_pass`] on a grid that is not a power of two: the general
+    /// kernel, [`fill_general`], with the coordinate's form chosen once
+    /// for the pass (a choice per point keeps the loop from vectorising).
+    fn fill_general(
+        grid: &Grid,
+        keys: &PairKeys,
+        dim: u64,
+        first: u32,
+        x: &mut [Self],
+        y: &mut [Self],
+    );
 }
 
 impl Coordinate for f64 {
@@ -713,6 +745,20 @@ impl Coordinate for f64 {
     fn power_of_two_jitter_bits(_: PowerOfTwoGrid) -> u32 {
         32
     }
+
+    #[inline(always)]
+    fn fill_general(
+        grid: &Grid,
+        keys: &PairKeys,
+        dim: u64,
+        first: u32,
+        x: &mut [f64],
+        y: &mut [f64],
+    ) {
+        fill_general(grid, keys, dim, first, x, y, 32, |(k, h)| {
+            grid.unit_of_parts(k, h)
+        });
+    }
 }
 
 impl Coordinate for f32 {
@@ -729,6 +775,28 @@ impl Coordinate for f32 {
     #[inline(always)]
     fn power_of_two_jitter_bits(power_of_two: PowerOfTwoGrid) -> u32 {
         power_of_two.f32_jitter_bits()
+    }
+
+    #[inline(always)]
+    fn fill_general(
+        grid: &Grid,
+        keys: &PairKeys,
+        dim: u64,
+        first: u32,
+        x: &mut [f32],
+        y: &mut [f32],
+    ) {
+        match grid.f32_coordinate {
+            Some(f32_coordinate) => {
+                let bits = f32_coordinate.jitter_bits();
+                fill_general(grid, keys, dim, first, x, y, bits, |parts| {
+                    f32_coordinate.unit(parts)
+                });
+            }
+            None => fill_general(grid, keys, dim, first, x, y, 32, |(k, h)| {
+                grid.unit_f32_of_wide_parts(k, h)
+            }),
+        }
     }
 }
 
@@ -753,6 +821,44 @@ pub(super) fn fill_pass<T: Coordinate>(
         });
         return;
     }
+    T::fill_general(grid, keys, dim, first, x, y);
+}
+
+/// [`fill_pass`]'s general kernel (any `N`), each coordinate stored as
+/// `store((k, h))`, which reads no more than the top `jitter_bits` bits of
+/// `h`: where those are at most [`HASH_HIGH_EXACT_BITS`], the jitters'
+/// hashes skip their last step ([`hash_u32_high`]), the same values.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn fill_general<T>(
+    grid: &Grid,
+    keys: &PairKeys,
+    dim: u64,
+    first: u32,
+    x: &mut [T],
+    y: &mut [T],
+    jitter_bits: u32,
+    store: impl Fn((u32, u32)) -> T + Copy,
+) {
+    if jitter_bits <= HASH_HIGH_EXACT_BITS {
+        fill_general_with::<T, true>(grid, keys, dim, first, x, y, store);
+    } else {
+        fill_general_with::<T, false>(grid, keys, dim, first, x, y, store);
+    }
+}
+
+/// [`fill_general`] with the jitters' hashes cut short or whole, as
+/// `SHORT_JITTER` says.
+#[inline(always)]
+fn fill_general_with<T, const SHORT_JITTER: bool>(
+    grid: &Grid,
+    keys: &PairKeys,
+    dim: u64,
+    first: u32,
+    x: &mut [T],
+    y: &mut [T],
+    store: impl Fn((u32, u32)) -> T + Copy,
+) {
     let len = x.len();
     debug_assert_eq!(len, y.len());
     let (n, nx, ny) = (grid.n, grid.nx, grid.ny);
@@ -806,19 +912,39 @@ pub(super) fn fill_pass<T: Coordinate>(
         let spreads = [&spread_c[..m], &spread_r[..m]];
         // The same shifts either way (`reduce_u32_narrow`); the narrow form
         // vectorises better.
+        let jitter_hash = |key, j| {
+            if SHORT_JITTER {
+                hash_u32_high(key, j)
+            } else {
+                hash_u32(key, j)
+            }
+        };
+        let forms = (jitter_hash, store);
         if nx < 1 << 16 && ny < 1 << 16 {
-            block_points(grid, keys, cells, spreads, base, x, y, reduce_u32_narrow);
+            block_points(
+                grid,
+                keys,
+                cells,
+                spreads,
+                base,
+                x,
+                y,
+                reduce_u32_narrow,
+                forms,
+            );
         } else {
-            block_points(grid, keys, cells, spreads, base, x, y, reduce_u32);
+            block_points(grid, keys, cells, spreads, base, x, y, reduce_u32, forms);
         }
     }
 }
 
 /// The points of one block of [`fill_pass`] from their cells and spreads,
-/// with the shifts reduced by `reduce` (one instantiation per form).
+/// with the shifts reduced by `reduce`, the jitters hashed by
+/// `jitter_hash` and the coordinates made by `store` (one instantiation
+/// per form).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn block_points<T: Coordinate>(
+fn block_points<T>(
     grid: &Grid,
     keys: &PairKeys,
     [c, r]: [&[u32]; 2],
@@ -827,12 +953,14 @@ fn block_points<T: Coordinate>(
     x: &mut [T],
     y: &mut [T],
     reduce: impl Fn(u32, u32) -> u32 + Copy,
+    (jitter_hash, store): (impl Fn(u64, u32) -> u32 + Copy, impl Fn((u32, u32)) -> T),
 ) {
     for k in 0..x.len() {
         let cell = [c[k], r[k]];
         let spread = [spread_c[k], spread_r[k]];
-        let [px, py] = grid.spread_parts(keys, cell, spread, base + k as u32, reduce);
-        (x[k], y[k]) = (T::from_parts(grid, px), T::from_parts(grid, py));
+        let i = base + k as u32;
+        let [px, py] = grid.spread_parts(keys, cell, spread, i, reduce, jitter_hash);
+        (x[k], y[k]) = (store(px), store(py));
     }
 }
 

@@ -24,10 +24,12 @@
 //! **The f32 coordinate** is the exact value `(k + h·2⁻³²)/N` rounded down
 //! to 24 bits, by integer arithmetic: the top 24 bits of the fixed-point
 //! number `k·2³² + h` below `2^(p+32)`, `((k ≫ (p − 24)⁺) ≪ (24 − p)⁺) |
-//! (h ≫ (p + 8))`, converted exactly. Other grids round the f64 coordinate
-//! down (module `stratified`), and for `N ≤ 2²¹` the two agree to the bit:
-//! `k + h·2⁻³²` (`k < 2²¹`, 32 jitter bits) fits the 53 bits of an f64 and
-//! the product by `2⁻ᵖ` is exact. Above `2²¹` the f64 sum rounds `h` to
+//! (h ≫ (p + 8))`, converted exactly. For `N ≤ 2²⁴` it is the general
+//! kernel's f32 coordinate (`stratified_f32.rs`, whose `M` is `2²⁴` here),
+//! to the bit; above, the general kernel would round the f64 coordinate
+//! down. That rounded-down f64 coordinate agrees with this one for `N ≤
+//! 2²¹`: `k + h·2⁻³²` (`k < 2²¹`, 32 jitter bits) fits the 53 bits of an
+//! f64 and the product by `2⁻ᵖ` is exact. Above `2²¹` the f64 sum rounds `h` to
 //! fewer bits; where that rounding carries across a 24-bit step (`k ≥ 2²¹`
 //! and the jitter's bits below the step all ones, about one coordinate in
 //! `2³⁰`) the f32 coordinate here is one step below the rounded-down f64
@@ -46,7 +48,7 @@ use super::stratified_batch::{
 /// for counts past the width, and the compiler folds the select into
 /// them, where the former form, two shifts `(x ≫ 1) ≫ (s − 1)`, was two.
 #[inline(always)]
-fn shr_or_zero(x: u32, s: u32) -> u32 {
+pub(super) fn shr_or_zero(x: u32, s: u32) -> u32 {
     x.checked_shr(s).unwrap_or(0)
 }
 
@@ -230,7 +232,7 @@ mod tests {
     /// (`dim` 0 and 2), starts at both ends of a pass and in its middle:
     /// the power-of-two kernel gives the general kernel's f64 values to the
     /// bit, and its f32 values too where they agree by definition
-    /// (`N ≤ 2²¹`); everywhere its f32 values are [`exact_f32`] of the
+    /// (`N ≤ 2²⁴`); everywhere its f32 values are [`exact_f32`] of the
     /// general kernel's strata and jitters.
     #[test]
     fn power_of_two_kernel_gives_the_general_values() {
@@ -252,7 +254,7 @@ mod tests {
                         "{what}"
                     );
                     let (xf, yf) = fill::<f32>(&grid, &keys, dim, first, len);
-                    if p <= 21 {
+                    if p <= 24 {
                         let want = fill::<f32>(&general, &keys, dim, first, len);
                         assert_eq!((&xf, &yf), (&want.0, &want.1), "{what}");
                     }
