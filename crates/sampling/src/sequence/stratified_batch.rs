@@ -9,7 +9,8 @@
 //!   lanes to an AVX-512 register;
 //! * two range reductions by multiplication ([`reduce_u32`], in 32-bit
 //!   lanes when the grid's sides are below 2¹⁶: [`reduce_u32_narrow`]), two
-//!   rotations ([`rotate`]) and two multiplications by `1/N`;
+//!   rotations ([`rotate`]) and two multiplications by `1/N` (in f32,
+//!   two fused multiply-adds by its two f32 parts: `stratified_f32.rs`);
 //! * the spread sub-strata `r·g_y mod ny` and `c·g_x mod nx`: for the first
 //!   pair, added up per lane like its cells (tabulated spreads of the lane
 //!   steps, three more rotations); for later pairs, looked up in a table of
@@ -581,7 +582,6 @@ impl Grid {
     /// most 2²⁴ (`k + h·2⁻³² < N`), exact in f32, so the clamp and the
     /// scale by 2⁻²⁴ run in f32 lanes, sixteen to an AVX-512 register
     /// where the f64 ones run eight.
-    ///
     #[inline(always)]
     pub(super) fn unit_f32_of_wide_parts(&self, k: u32, h: u32) -> f32 {
         const TOP: f32 = 16_777_215.0;
@@ -701,10 +701,13 @@ pub(super) fn cell_of(grid: &Grid, keys: &PairKeys, dim: u64, i: u32) -> u32 {
 }
 
 /// A coordinate the batch kernel stores, from its stratum `k` and jitter
-/// bits `h`: f64, `(k + h·2⁻³²)·N⁻¹` ([`Grid::unit`]); or f32, that value
-/// rounded down to 24 bits ([`Grid::unit_f32`]), except on power-of-two
-/// grids, whose f32 coordinate is the exact one rounded down
-/// (`stratified_pow2.rs`: the same for `N ≤ 2²¹`).
+/// bits `h`: f64, `(k + h·2⁻³²)·N⁻¹` ([`Grid::unit`]); or f32, for `N ≤
+/// 2²⁴` the nearest f32 to that value with its jitter cut to what an f32
+/// shows (`stratified_f32.rs`), above it the f64 value rounded down to 24
+/// bits ([`Grid::unit_f32_of_wide_parts`]), except on power-of-two grids,
+/// whose f32 coordinate is the exact one rounded down
+/// (`stratified_pow2.rs`: the same as `stratified_f32.rs`'s for `N ≤
+/// 2²⁴`).
 pub(super) trait Coordinate: Sized {
     /// The coordinate on a grid that is not a power of two.
     fn from_parts(grid: &Grid, parts: (u32, u32)) -> Self;
