@@ -50,7 +50,7 @@ pub(super) const BLOCK: usize = 256;
 /// `0x2c1b_3c6d`, the fixed odd multiplier of every permutation round.
 const ROUND_MULTIPLIER: u32 = 0x2c1b_3c6d;
 
-/// The keys of the two rounds of one permutation of [`permute`]: per round
+/// The keys of the two rounds of one permutation of [`Domain::permute`]: per round
 /// `[xor key, odd multiplier, addend, combined odd multiplier]`, derived
 /// from the 64-bit hashes `mix64(key)` and `mix64(key ⊕ γ)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -304,6 +304,18 @@ pub(super) fn hash_u32_high(key: u64, j: u32) -> u32 {
 
 /// How many top bits [`hash_u32_high`] shares with [`hash_u32`]: 15.
 pub(super) const HASH_HIGH_EXACT_BITS: u32 = 15;
+
+/// [`hash_u32_high`] if `SHORT`, else [`hash_u32`]: the hash a kernel
+/// takes when it reads no more than the top [`HASH_HIGH_EXACT_BITS`] bits
+/// (`SHORT`), the same values either way.
+#[inline(always)]
+pub(super) fn hash_u32_cut<const SHORT: bool>(key: u64, j: u32) -> u32 {
+    if SHORT {
+        hash_u32_high(key, j)
+    } else {
+        hash_u32(key, j)
+    }
+}
 
 /// `⌊h · m / 2³²⌋ ∈ 0..m`: [`reduce`] for a 32-bit hash (Lemire 2019),
 /// each value of `0..m` within `m/2³²` (relative) of probability `1/m`.
@@ -915,14 +927,7 @@ fn fill_general_with<T, const SHORT_JITTER: bool>(
         let spreads = [&spread_c[..m], &spread_r[..m]];
         // The same shifts either way (`reduce_u32_narrow`); the narrow form
         // vectorises better.
-        let jitter_hash = |key, j| {
-            if SHORT_JITTER {
-                hash_u32_high(key, j)
-            } else {
-                hash_u32(key, j)
-            }
-        };
-        let forms = (jitter_hash, store);
+        let forms = (hash_u32_cut::<SHORT_JITTER>, store);
         if nx < 1 << 16 && ny < 1 << 16 {
             block_points(
                 grid,

@@ -39,9 +39,7 @@
 //! ns per sample) and, for `N ≤ 2²⁴` (a stratum at least one f32 step
 //! wide), never leaves its stratum.
 
-use super::stratified_batch::{
-    golden_unit, hash_u32, hash_u32_high, Domain, PairKeys, HASH_HIGH_EXACT_BITS,
-};
+use super::stratified_batch::{golden_unit, hash_u32_cut, Domain, PairKeys, HASH_HIGH_EXACT_BITS};
 
 /// `x ≫ s`, and 0 for `s ≥ 32` (Rust's `>>` wraps the count). One
 /// instruction in vector lanes: x86's variable shifts (`vpsrlvd`) give 0
@@ -128,7 +126,7 @@ impl PowerOfTwoGrid {
     /// The shifts read the top `log₂ nx` and `log₂ ny` bits of their hashes;
     /// where those and `jitter_bits` are at most
     /// [`HASH_HIGH_EXACT_BITS`], the hashes skip their last step
-    /// ([`hash_u32_high`]), the same values to the bit (every `N` from 2⁹
+    /// ([`hash_u32_cut`]), the same values to the bit (every `N` from 2⁹
     /// to 2³⁰ in f32; the shifts alone for `N ≤ 2³⁰` in f64). Measured on
     /// `N = 2²⁰` in f32: 0.74 → 0.65 ns per point.
     #[inline(always)]
@@ -154,7 +152,7 @@ impl PowerOfTwoGrid {
     }
 
     /// [`PowerOfTwoGrid::fill_pass`] with the shifts' and the jitters'
-    /// hashes cut short ([`hash_u32_high`]) or whole, as the flags say.
+    /// hashes cut short ([`hash_u32_cut`]) or whole, as the flags say.
     #[inline(always)]
     fn fill<T, const SHORT_SHIFTS: bool, const SHORT_JITTER: bool>(
         self,
@@ -165,13 +163,6 @@ impl PowerOfTwoGrid {
         y: &mut [T],
         store: impl Fn((u32, u32)) -> T,
     ) {
-        let hash = |short: bool, key: u64, j: u32| {
-            if short {
-                hash_u32_high(key, j)
-            } else {
-                hash_u32(key, j)
-            }
-        };
         let (n_mask, nx_mask, ny_mask) = self.masks();
         let (log_nx, log_ny) = (self.log_nx, self.log_ny);
         let domain = Domain::new(n_mask.wrapping_add(1).max(1));
@@ -189,12 +180,12 @@ impl PowerOfTwoGrid {
             let column_spread = c.wrapping_mul(self.column_unit) & nx_mask;
             let row_spread = r.wrapping_mul(self.row_unit) & ny_mask;
             // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), 0 for log = 0.
-            let s = shr_or_zero(hash(SHORT_SHIFTS, keys.sigma, c), 32 - log_ny);
-            let t = shr_or_zero(hash(SHORT_SHIFTS, keys.tau, r), 32 - log_nx);
+            let s = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.sigma, c), 32 - log_ny);
+            let t = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.tau, r), 32 - log_nx);
             let kx = (c << log_ny) | ((row_spread + s) & ny_mask);
             let ky = (r << log_nx) | ((column_spread + t) & nx_mask);
-            *x = store((kx, hash(SHORT_JITTER, jitter_x, i)));
-            *y = store((ky, hash(SHORT_JITTER, jitter_y, i)));
+            *x = store((kx, hash_u32_cut::<SHORT_JITTER>(jitter_x, i)));
+            *y = store((ky, hash_u32_cut::<SHORT_JITTER>(jitter_y, i)));
         }
     }
 }
