@@ -892,8 +892,33 @@ fn scene_index(scene: &Scene, k: usize) -> usize {
 }
 
 /// The first non-finite sample of an independent-sample estimate of
-/// `samples` samples, found by running its chunks again in order.
-fn first_non_finite_independent(
+/// `samples` samples with `seed` over the emitters `prepared` from
+/// `scene` by [`prepare`], found by evaluating its chunks again in order
+/// and adding each emitter's values to the samples' running sums in the
+/// estimate's order: an [`EstimateError::NonFiniteSample`] naming the
+/// lowest sample whose sum turns NaN or ±∞ and the emitter that turned it,
+/// or an [`EstimateError::Overflow`] if every sum stays finite.
+///
+/// The slow path [`estimate`] takes when a sum of its samples is not
+/// finite. Public for diagnosis and for the integration tests: strength
+/// scaling ([`crate::strength_scale`]) keeps an estimate's own scenes
+/// from reaching it, and a scene prepared unscaled can.
+///
+/// ```
+/// use glam::DVec3;
+/// use lambert_estimator::estimation::{first_non_finite_independent, prepare, EstimateError};
+/// use lambert_estimator::strategy::Strategy;
+/// use lambert_light::emitter::{Emitter, Sky};
+/// use lambert_light::{receiver::Receiver, Scene};
+/// let sky = || Emitter::Sky(Sky::new(f64::MAX / 4.0).unwrap());
+/// let receiver = Receiver::new(DVec3::ZERO, DVec3::Z).unwrap();
+/// let scene = Scene::new(receiver, vec![sky(), sky()]).unwrap();
+/// // Cosine samples of a sky are π·L: the second sky overflows sample 0.
+/// let (prepared, _) = prepare(&scene, Strategy::CosineHemisphere);
+/// let error = first_non_finite_independent(&prepared, &scene, 1, 8);
+/// assert!(matches!(error, EstimateError::NonFiniteSample { emitter: 1, sample: 0, .. }));
+/// ```
+pub fn first_non_finite_independent(
     prepared: &[PreparedEmitter],
     scene: &Scene,
     seed: u64,
@@ -911,8 +936,10 @@ fn first_non_finite_independent(
         .unwrap_or(NON_FINITE_NOT_FOUND)
 }
 
-/// The first non-finite sample among samples `0..samples` of `sequence`.
-fn first_non_finite_in<S: SampleSequence>(
+/// [`first_non_finite_independent`] for samples `0..samples` of
+/// `sequence` (one randomization of a randomized-QMC estimate; the error's
+/// `randomization` is `None`, for the caller to fill in).
+pub fn first_non_finite_in<S: SampleSequence>(
     prepared: &[PreparedEmitter],
     scene: &Scene,
     sequence: &S,
@@ -964,54 +991,5 @@ fn with_randomization(error: EstimateError, k: u64) -> EstimateError {
             total,
         },
         other => other,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use glam::DVec3;
-    use lambert_light::emitter::Emitter;
-
-    /// The slow path that names a failed estimate's first non-finite
-    /// sample, called directly: strength scaling keeps strong emitters from
-    /// reaching it through `estimate`, so it is exercised here on a scene
-    /// prepared unscaled, two skies of radiance 0.9·f64::MAX/π behind a
-    /// point light (index 0), whose cosine samples are π·L each and whose
-    /// sum overflows at the second sky, emitters[2], in sample 0.
-    #[test]
-    fn the_first_non_finite_sample_is_named_with_its_emitter() {
-        let radiance = 0.9 * f64::MAX / std::f64::consts::PI;
-        let sky = || Emitter::Sky(lambert_light::emitter::Sky::new(radiance).unwrap());
-        let point = lambert_light::emitter::PointLight::with_intensity(DVec3::Z, 1.0).unwrap();
-        let receiver = lambert_light::receiver::Receiver::new(DVec3::ZERO, DVec3::Z).unwrap();
-        let scene = Scene::new(receiver, vec![Emitter::Point(point), sky(), sky()]).unwrap();
-        let (prepared, _) = prepare(&scene, Strategy::CosineHemisphere);
-        let expect = |error: EstimateError, randomization: Option<u64>| match error {
-            EstimateError::NonFiniteSample {
-                emitter,
-                kind,
-                sample,
-                randomization: r,
-                value,
-                total,
-            } => {
-                assert_eq!((emitter, kind, sample, r), (2, "sky", 0, randomization));
-                assert_eq!(value, std::f64::consts::PI * radiance);
-                assert_eq!(total, f64::INFINITY);
-            }
-            other => panic!("{other:?}"),
-        };
-        expect(first_non_finite_independent(&prepared, &scene, 1, 8), None);
-        let sobol = first_non_finite_in(&prepared, &scene, &Sobol::new(1), 8);
-        expect(with_randomization(sobol, 3), Some(3));
-        let message =
-            with_randomization(first_non_finite_in(&prepared, &scene, &Sobol::new(1), 8), 3)
-                .to_string();
-        assert!(
-            message.contains("emitters[2] (a sky): sample 0 of randomization 3")
-                && message.contains("overflow"),
-            "{message}"
-        );
     }
 }
