@@ -304,6 +304,13 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// geometric mean of the new to the old relative RMSE is 1.000 (0.93 to
 /// 1.11), 122 rows equal to three digits, and the 99 % intervals cover
 /// the closed form in 1,163 of 1,176 runs before and after.)
+/// Re-pinned when the first pair of stratified points came to visit its
+/// cells column by column instead of in the golden order of all cells
+/// (`lambert_sampling`'s `stratified` module): the digest was
+/// 0x044f_586d_0614_1ece. Each pass's points are relabelled, the same in
+/// distribution, so every stratified row is a new draw of the same
+/// estimator (relative RMSE over 40 seeds before and after, in the module
+/// docs, equal within their noise); no other row reads these points.
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -321,7 +328,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0x044f_586d_0614_1ece;
+const PINNED: u64 = 0xdeae_e9ce_f324_0c6b;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

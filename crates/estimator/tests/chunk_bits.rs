@@ -455,12 +455,19 @@ fn rqmc_bits(sequence: SequenceKind, threads: usize) -> Vec<u64> {
 /// n_z cos θ). Over N ≥ 2¹⁰ the geometric mean of the new to the old
 /// relative RMSE per strategy and sequence lies between 0.90 and 1.06,
 /// and the mean coverage of the 99 % intervals between 0.990 and 1.0
-/// in both.)
+/// in both.) And when the first pair of stratified points came to visit
+/// its cells column by column instead of in the golden order of all
+/// cells (`lambert_sampling`'s `stratified` module): a relabelling of
+/// each pass's points, the same in distribution, so the stratified
+/// estimates are new draws of the same estimators (relative RMSE over 40
+/// seeds before and after equal within their noise, in the module docs);
+/// the stratified digest was 0xdf1d_28ca_d69d_12b7, the Sobol one did not
+/// move.
 #[test]
 fn randomized_qmc_estimates_are_pinned() {
     let pinned = [
         (SequenceKind::Sobol, 0x5554_5e77_f74c_e369_u64),
-        (SequenceKind::Stratified, 0xdf1d_28ca_d69d_12b7),
+        (SequenceKind::Stratified, 0x4bf1_3fd6_010d_175e),
     ];
     for (sequence, want) in pinned {
         let one = rqmc_bits(sequence, 1);

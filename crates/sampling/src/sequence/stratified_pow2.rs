@@ -6,9 +6,10 @@
 //! `ny = 2^⌈p/2⌉`, and each step of the general kernel has a form without
 //! tables, carries or divisions:
 //!
-//! * the first pair's cell `(i·α + b) mod N` is the low `p` bits of the
-//!   wrapping 32-bit `i·α + b` (`2^p` divides `2^32`), so each lane computes
-//!   its own cell instead of adding tabulated steps with carries;
+//! * the first pair's position `(i + b) mod N` is the low `p` bits of the
+//!   wrapping 32-bit `i + b` (`2^p` divides `2^32`); its row is the low
+//!   `log₂ ny` bits of that and its column the bits above times `g_x`,
+//!   masked, so each lane computes its own cell, with no runs of columns;
 //! * `cell mod nx` and `⌊cell / nx⌋` are a mask and a shift;
 //! * the spreads `x·g mod m` (`m = nx` or `ny`) are the low bits of the
 //!   wrapping product: no table, no gather;
@@ -66,8 +67,6 @@ pub(super) struct PowerOfTwoGrid {
     log_nx: u32,
     /// `log₂ ny`.
     log_ny: u32,
-    /// The first pair's multiplier `α` (`golden_unit(N)`).
-    alpha: u32,
     /// The column spread's multiplier `g_x` (`golden_unit(nx)`).
     column_unit: u32,
     /// The row spread's multiplier `g_y` (`golden_unit(ny)`).
@@ -86,7 +85,6 @@ impl PowerOfTwoGrid {
             log_n,
             log_nx: nx.trailing_zeros(),
             log_ny: ny.trailing_zeros(),
-            alpha: golden_unit(n),
             column_unit: golden_unit(nx),
             row_unit: golden_unit(ny),
         })
@@ -166,17 +164,22 @@ impl PowerOfTwoGrid {
         let (n_mask, nx_mask, ny_mask) = self.masks();
         let (log_nx, log_ny) = (self.log_nx, self.log_ny);
         let domain = Domain::new(n_mask.wrapping_add(1).max(1));
-        let (alpha, offset) = (self.alpha, keys.offset);
+        let offset = keys.offset;
         let jitter_x = keys.jitter;
         let jitter_y = keys.jitter >> 32;
         for (k, (x, y)) in x.iter_mut().zip(y.iter_mut()).enumerate() {
             let i = first.wrapping_add(k as u32);
-            let cell = if dim == 0 {
-                i.wrapping_mul(alpha).wrapping_add(offset) & n_mask
+            let (c, r) = if dim == 0 {
+                // Column by column: p = (i + b) mod N, column ⌊p / ny⌋·g_x.
+                let p = i.wrapping_add(offset) & n_mask;
+                (
+                    (p >> log_ny).wrapping_mul(self.column_unit) & nx_mask,
+                    p & ny_mask,
+                )
             } else {
-                domain.step(i, &keys.cell) & n_mask
+                let cell = domain.step(i, &keys.cell) & n_mask;
+                (cell & nx_mask, cell >> log_nx)
             };
-            let (c, r) = (cell & nx_mask, cell >> log_nx);
             let column_spread = c.wrapping_mul(self.column_unit) & nx_mask;
             let row_spread = r.wrapping_mul(self.row_unit) & ny_mask;
             // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), 0 for log = 0.

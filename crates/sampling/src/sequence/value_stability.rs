@@ -147,11 +147,22 @@ fn stratified_values_are_pinned() {
     // f64 value rounded down (module docs of `stratified.rs`): the f64
     // values and the digests of N = 16 and N = 2³² − 1 did not move; those
     // of N = 1000, 13 and 3 125 000 were 0x2c59_ad66_a503_94fb,
-    // 0xc95f_b945_2b07_e009 and 0xf8cc_d395_9d10_d548.
+    // 0xc95f_b945_2b07_e009 and 0xf8cc_d395_9d10_d548. Re-pinned when the
+    // first pair's cells went column by column instead of in the golden
+    // order `(i·α + b) mod N` (module docs of `stratified.rs`): a
+    // relabelling of each pass's points, whose whole-pass error did not
+    // move (relative RMSE over 40 seeds, old → new: disk 5.15e-3 →
+    // 5.12e-3 at N = 10⁶, 6.53e-3 → 6.62e-3 at 2²⁰; sphere light 2.77e-9
+    // both, 1.97e-9 both), at half the cost of an f32 point. The pins were
+    // samples 0, 1, 2 000 000: (0x3fee_1a23_cc9e_c826, 0x3fe1_79f9_7684_6809),
+    // (0x3f9a_458c_2f01_bf5d, 0x3fc5_1362_8126_63e5), (0x3fee_17c7_f8af_d8c3,
+    // 0x3f9a_bee5_4d61_113d); the digests 0xf7e7_137e_50ba_c171,
+    // 0xb39a_e19d_0778_4006, 0x8287_3b6d_fe1e_bfed, 0x5575_0201_bf8e_6d66,
+    // 0x98b3_7d6e_c52c_7bb0.
     let pinned: [(u64, u64, u64); 3] = [
-        (0, 0x3fee_1a23_cc9e_c826, 0x3fe1_79f9_7684_6809),
-        (1, 0x3f9a_458c_2f01_bf5d, 0x3fc5_1362_8126_63e5),
-        (2_000_000, 0x3fee_17c7_f8af_d8c3, 0x3f9a_bee5_4d61_113d),
+        (0, 0x3fe7_fc54_83cb_c58a, 0x3fef_0bfc_42e7_828b),
+        (1, 0x3fe7_f9d2_c3a1_f9b3, 0x3fef_100b_3923_1932),
+        (2_000_000, 0x3fde_0ab5_7176_ee0e, 0x3fef_0a8a_dae1_886e),
     ];
     let mut s = Stratified::new(3_125_000, 0x1234).unwrap();
     for (i, x, y) in pinned {
@@ -160,11 +171,11 @@ fn stratified_values_are_pinned() {
         assert_eq!((u.x.to_bits(), u.y.to_bits()), (x, y), "sample {i}");
     }
     let digests: [u64; 5] = [
-        0xf7e7_137e_50ba_c171,
-        0xb39a_e19d_0778_4006,
-        0x8287_3b6d_fe1e_bfed,
-        0x5575_0201_bf8e_6d66,
-        0x98b3_7d6e_c52c_7bb0,
+        0x81bf_8873_d4b8_6e09,
+        0x84f4_af5c_3972_fcea,
+        0x0c0f_f050_709d_6bb5,
+        0xf007_a30a_a3ce_7d5b,
+        0xe359_eab0_03ec_ae66,
     ];
     for ((n, seed), want) in STRATIFIED_CONFIGS.into_iter().zip(digests) {
         let seq = Stratified::new(n, seed).unwrap();
