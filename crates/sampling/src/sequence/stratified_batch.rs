@@ -646,11 +646,9 @@ impl Grid {
         reduce: impl Fn(u32, u32) -> u32,
         jitter_hash: impl Fn(u64, u32) -> u32,
     ) -> [(u32, u32); 2] {
-        let (nx, ny) = (self.nx, self.ny);
-        let s = reduce(hash_u32(keys.sigma, c), ny);
-        let t = reduce(hash_u32(keys.tau, r), nx);
-        let kx = c * ny + rotate(row_spread, s, ny);
-        let ky = r * nx + rotate(column_spread, t, nx);
+        let column = ColumnParts::new(self, keys, c, column_spread, &reduce);
+        let t = reduce(hash_u32(keys.tau, r), self.nx);
+        let [kx, ky] = column.strata(self, r, t, row_spread);
         // 32 hashed bits per axis, the two halves of the jitter key: a
         // resolution of 2⁻³²/N, finer than the 2⁻³² of a Sobol point.
         let (high, low) = (
@@ -943,29 +941,36 @@ fn fill_general_with<T, const SHORT_JITTER: bool>(
 /// The most rows whose shifts [`fill_first_pair`] tabulates per call.
 const ROW_SHIFT_TABLE: usize = 4096;
 
-/// What one column fixes for the first pair's points in it: `c·ny`, the
-/// column's shift `s_c` and its spread `c·g_x mod nx`.
+/// What one column `c` fixes for the points in it: `c·ny`, the column's
+/// shift `s_c` and its spread `c·g_x mod nx`.
 #[derive(Clone, Copy)]
-struct FirstPairColumn {
+struct ColumnParts {
     start: u32,
     shift: u32,
     spread: u32,
 }
 
-impl FirstPairColumn {
-    /// The column `c`'s values, its shift reduced by `reduce`.
+impl ColumnParts {
+    /// Column `c`'s parts, given its spread, its shift reduced by `reduce`.
     #[inline(always)]
-    fn new(grid: &Grid, keys: &PairKeys, c: u32, reduce: impl Fn(u32, u32) -> u32) -> Self {
-        FirstPairColumn {
+    fn new(
+        grid: &Grid,
+        keys: &PairKeys,
+        c: u32,
+        spread: u32,
+        reduce: impl Fn(u32, u32) -> u32,
+    ) -> Self {
+        ColumnParts {
             start: c * grid.ny,
             shift: reduce(hash_u32(keys.sigma, c), grid.ny),
-            spread: grid.column_spread.get(c),
+            spread,
         }
     }
 
     /// The strata `(k_x, k_y)` of the point in row `r` of this column,
-    /// given the row's shift `t_r` and spread `r·g_y mod ny`: the same
-    /// as [`Grid::spread_parts`]'.
+    /// given the row's shift `t_r` and spread `r·g_y mod ny`: column
+    /// stratum `c·ny + (r·g_y + s_c) mod ny`, row stratum `r·nx + (c·g_x +
+    /// t_r) mod nx`.
     #[inline(always)]
     fn strata(self, grid: &Grid, r: u32, t: u32, spread_r: u32) -> [u32; 2] {
         [
@@ -1039,7 +1044,8 @@ fn first_pair_runs<T>(
     let mut done = 0usize;
     while done < len {
         let (j, r0) = grid.by_ny.div_rem(p);
-        let column = FirstPairColumn::new(grid, keys, grid.column_spread.get(j), reduce);
+        let c = grid.column_spread.get(j);
+        let column = ColumnParts::new(grid, keys, c, grid.column_spread.get(c), reduce);
         let i0 = first + done as u32;
         // Up to the column's end or the batch's (without tables, at most
         // a block: the steps' table is that long).
