@@ -147,6 +147,25 @@ fn cases() -> Vec<Case> {
             ],
         },
         Case {
+            // The receiver on the disk's axis, 30° off its own normal: the
+            // disk's solid-angle sampler once built a skewed frame here
+            // from the rounding of its lateral offset, and its density
+            // rejected directions that hit the disk, so MIS counted those
+            // cosine samples at full weight (about twice the irradiance).
+            name: "disk seen from its axis, 30° off the normal",
+            scene: one(Emitter::Disk(
+                DiskLight::new(
+                    DVec3::new(0.5, 0.0, 0.866_025_403_784_438_6),
+                    DVec3::new(-0.5, 0.0, -0.866_025_403_784_438_6),
+                    0.1,
+                    1.0,
+                    false,
+                )
+                .unwrap(),
+            )),
+            expect: &[],
+        },
+        Case {
             name: "receiver 0.01 under a unit disk",
             scene: one(Emitter::Disk(
                 DiskLight::new(DVec3::new(0.3, 0.0, 0.01), -DVec3::Z, 1.0, 1.0, false).unwrap(),

@@ -168,8 +168,28 @@ macro_rules! disk_light_impl {
                 if !(height > 0.0) {
                     return Err(edge_on);
                 }
-                let lateral = v - n * height;
+                // `v − n·h` rounds by a few ε|v| in every direction, along
+                // n̂ too. Seen from on or near the disk's axis that rounding
+                // is much or all of the offset: ê_ρ would lean into n̂, the
+                // frame below would not be orthonormal, samples would come
+                // out squashed and `contains` would reject directions that
+                // hit the disk (MIS then weighted those cosine samples 1,
+                // about twice the irradiance). So what is left along n̂ is
+                // projected out, and an offset within the rounding of |v|
+                // is none: the disk is seen from its axis, a circle. Both
+                // act only where the offset is within rounding of n̂ or of
+                // nothing, so other disks keep their values to the bit.
+                let mut lateral = v - n * height;
+                let along = n.dot(lateral);
+                if along.abs() > 4.0 * Real::EPSILON * overflow_free_length(lateral) {
+                    lateral -= n * along;
+                }
                 let rho = overflow_free_length(lateral);
+                let rho = if rho > 8.0 * Real::EPSILON * overflow_free_length(v) {
+                    rho
+                } else {
+                    0.0
+                };
                 let e_rho = if rho > 0.0 {
                     lateral / rho
                 } else {
@@ -703,6 +723,93 @@ mod tests {
                     (w - want).abs().max_element() <= 4.0 * f64::EPSILON,
                     "u {u}: {w} against {want}"
                 );
+            }
+        }
+    }
+
+    /// A disk seen from its axis off the receiver's normal (the axis
+    /// through the receiver, tilted 30°–75°), or from within 10⁻¹³ (f64)
+    /// or 10⁻⁶ (f32) radians of it: its samples are unit directions inside
+    /// the circular cone of half-angle α (sin α = R/√(h² + R²)) that
+    /// `contains` accepts, with density `pdf(w) = 1/Ω`, the reported one.
+    /// Before the fix, `v − n·h` left rounding along n̂ as the offset, the
+    /// frame was not orthonormal, and `contains` rejected most directions
+    /// that hit the disk (MIS on such a disk came out 2× its irradiance).
+    /// Tolerances: |w| within 8ε of 1 (a few roundings of the frame's
+    /// products); inside the cone to within 64ε of cos α (the direction's
+    /// rounding against a cone whose edge is a sum of rounded terms); the
+    /// density exactly 1/Ω, as `pdf` returns it. Negative control: the
+    /// cone's axis tilted 3α away is rejected.
+    #[test]
+    fn a_disk_seen_from_its_axis_off_the_normal_is_sampled_inside_its_cone() {
+        for degrees in [30.0f64, 45.0, 60.0, 75.0] {
+            for radius in [0.01f64, 0.1, 0.5] {
+                for tilt in [0.0, 1e-13, 1e-6] {
+                    let t = degrees.to_radians();
+                    let axis = DVec3::new(t.sin(), 0.0, t.cos());
+                    let normal = -(axis + DVec3::new(0.0, tilt, 0.0)).normalize();
+                    let cos_alpha = 1.0 / (1.0 + radius * radius).sqrt();
+                    let case = format!("{degrees}° R {radius} tilt {tilt}");
+                    if tilt < 1e-6 {
+                        let d = super::f64::DiskSolidAngle::new(
+                            DVec3::ZERO,
+                            &Disk::new(axis, normal, radius).unwrap(),
+                        )
+                        .unwrap();
+                        let outside = DVec3::new((t + 3.0 * cos_alpha.acos()).sin(), 0.0, 0.0);
+                        let outside = (outside
+                            + DVec3::new(0.0, 0.0, (t + 3.0 * cos_alpha.acos()).cos()))
+                        .normalize();
+                        assert!(!d.contains(outside), "{case}: control");
+                        for i in 0..16 {
+                            for j in 0..=8 {
+                                let u = DVec2::new((i as f64 + 0.5) / 16.0, j as f64 / 8.0);
+                                let w = d.sample(u).direction;
+                                assert!(
+                                    (w.length() - 1.0).abs() <= 8.0 * f64::EPSILON,
+                                    "{case} {u}: |w| {}",
+                                    w.length()
+                                );
+                                assert!(
+                                    w.dot(axis) >= cos_alpha - 64.0 * f64::EPSILON,
+                                    "{case} {u}: outside the cone"
+                                );
+                                assert!(d.contains(w), "{case} {u}: rejected");
+                                assert_eq!(d.pdf(w), 1.0 / d.solid_angle(), "{case} {u}");
+                            }
+                        }
+                    }
+                    if tilt == 0.0 || tilt >= 1e-6 {
+                        let d = super::f32::DiskSolidAngle::new(
+                            glam::Vec3::ZERO,
+                            &lambert_geometry::f32::Disk::new(
+                                axis.as_vec3(),
+                                normal.as_vec3(),
+                                radius as f32,
+                            )
+                            .unwrap(),
+                        )
+                        .unwrap();
+                        for i in 0..16 {
+                            for j in 0..=8 {
+                                let u = glam::Vec2::new((i as f32 + 0.5) / 16.0, j as f32 / 8.0);
+                                let w = d.sample(u).direction;
+                                assert!(
+                                    (w.length() - 1.0).abs() <= 8.0 * f32::EPSILON,
+                                    "f32 {case} {u}: |w| {}",
+                                    w.length()
+                                );
+                                let inside = f64::from(w.dot(axis.as_vec3()));
+                                assert!(
+                                    inside >= cos_alpha - 64.0 * f64::from(f32::EPSILON),
+                                    "f32 {case} {u}: outside the cone"
+                                );
+                                assert!(d.contains(w), "f32 {case} {u}: rejected");
+                                assert_eq!(d.pdf(w), 1.0 / d.solid_angle(), "f32 {case} {u}");
+                            }
+                        }
+                    }
+                }
             }
         }
     }
