@@ -311,6 +311,14 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// distribution, so every stratified row is a new draw of the same
 /// estimator (relative RMSE over 40 seeds before and after, in the module
 /// docs, equal within their noise); no other row reads these points.
+/// Re-pinned when the later pairs of stratified points (MIS's second
+/// point) took their cells from Feistel rounds on grids of 16 columns or
+/// more whose N is not a power of two (`lambert_sampling`'s
+/// `stratified_shuffle` module): the digest was 0xdeae_e9ce_f324_0c6b.
+/// Another relabelling, of which sample gets which cell of a later pair,
+/// tested there to pair as at random; only the stratified rows that read a
+/// later pair (MIS's second point) moved, new draws of the same
+/// estimators.
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -328,7 +336,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0xdeae_e9ce_f324_0c6b;
+const PINNED: u64 = 0x327c_8b43_461d_137d;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

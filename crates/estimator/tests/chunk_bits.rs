@@ -462,12 +462,16 @@ fn rqmc_bits(sequence: SequenceKind, threads: usize) -> Vec<u64> {
 /// estimates are new draws of the same estimators (relative RMSE over 40
 /// seeds before and after equal within their noise, in the module docs);
 /// the stratified digest was 0xdf1d_28ca_d69d_12b7, the Sobol one did not
-/// move.
+/// move. And when the later stratified pairs took their cells from Feistel
+/// rounds on grids of 16 columns or more (`stratified_shuffle`): another
+/// relabelling, of which sample gets which cell of a later pair (MIS's
+/// second point, a second emitter's points); the stratified digest was 0x4bf1_3fd6_010d_175e, the Sobol one did
+/// not move.
 #[test]
 fn randomized_qmc_estimates_are_pinned() {
     let pinned = [
         (SequenceKind::Sobol, 0x5554_5e77_f74c_e369_u64),
-        (SequenceKind::Stratified, 0x4bf1_3fd6_010d_175e),
+        (SequenceKind::Stratified, 0xc650_b8a3_7c0e_6b6e),
     ];
     for (sequence, want) in pinned {
         let one = rqmc_bits(sequence, 1);

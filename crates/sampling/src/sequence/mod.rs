@@ -49,6 +49,7 @@ pub mod stratified;
 mod stratified_batch;
 mod stratified_f32;
 mod stratified_pow2;
+mod stratified_shuffle;
 #[cfg(test)]
 mod value_stability;
 

@@ -14,10 +14,14 @@
 //!   order (Fibonacci hashing; by the three-distance theorem every run of
 //!   whole columns is spread over the grid), each from its first row to
 //!   its last;
-//! * for later pairs, `π_d` is a pseudo-random permutation of `0..N` hashed
-//!   from `(seed, pass, d)`, so that the cells of different pairs are paired
-//!   at random (the idea of pbrt-v4's `StratifiedSampler`, §8.5, which hashes
-//!   a permutation per dimension).
+//! * for later pairs, `π_d` is a pseudo-random permutation of the cells
+//!   hashed from `(seed, pass, d)`, so that the cells of different pairs
+//!   are paired at random (the idea of pbrt-v4's `StratifiedSampler`, §8.5,
+//!   which hashes a permutation per dimension): on a grid whose columns
+//!   number `nx ≥ 16` and whose `N` is not a power of two, five Feistel
+//!   rounds on the column and the row (`stratified_shuffle.rs`); otherwise
+//!   a keyed bijection of `w`-bit integers walked until it falls in `0..N`
+//!   (`stratified_batch.rs`; for a power of two it never walks).
 //!
 //! Within its cell the point is jittered in the manner of *multi-jittered*
 //! sampling (Chiu, Shirley & Wang 1994, "Multi-jittered sampling", Graphics
@@ -117,6 +121,17 @@
 //! 2.77·10⁻⁹ and 1.97·10⁻⁹ → 1.97·10⁻⁹. It halves the cost of an f32
 //! point at `N = 10⁶` (README, "Speed"). What a prefix shorter than a
 //! column loses is its spread across columns.
+//!
+//! **The later pairs' order before 2026-12-06**: on every grid, the cycle
+//! walk above (the cell `π_d(i)` then split into column and row by a
+//! division). The walk takes a random number of steps per point, which
+//! vector lanes wait for, and made a later pair's point cost five times
+//! the first pair's at `N = 3 125 000`; the rounds cost the same on every
+//! lane and give the column and row at once. Like the first pair's new
+//! order, the change relabels the points of each pass (which sample gets
+//! which cell of the pair), so a whole pass's error keeps its
+//! distribution as long as the pairing stays random; measured in README,
+//! "Speed".
 //!
 //! **f32 output** (2-D requests), for `N ≤ 2²⁴`: the coordinate with its
 //! jitter cut to the `s = 24 − ⌈log₂ N⌉` bits an f32 near 1 can show,
@@ -433,6 +448,65 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The variance, over passes, of the pass mean of `x·x' + y·y'`, with
+    /// `(x, y)` from pair `p` of sequence `a` and `(x', y')` from pair `q`
+    /// of sequence `b`, as a multiple of what a uniformly random pairing
+    /// of two stratified sets gives: `2·(1/12)²/(N − 1)` (each product's
+    /// mean over a random matching of two sets of variance `1/12` has
+    /// variance `(1/12)²/(N − 1)`; the means sit within `O(N⁻²)` of ½).
+    fn pairing_variance_ratio(
+        a: &Stratified,
+        b: &Stratified,
+        [p, q]: [u64; 2],
+        passes: u64,
+    ) -> f64 {
+        let n = a.sample_count();
+        let (mut u, mut v) = (vec![DVec2::ZERO; n as usize], vec![DVec2::ZERO; n as usize]);
+        let mut sum = 0.0;
+        for pass in 0..passes {
+            let first = pass * u64::from(n);
+            a.fill_2d(first, p, &mut u);
+            b.fill_2d(first, q, &mut v);
+            let products = u.iter().zip(&v).map(|(u, v)| u.x * v.x + u.y * v.y);
+            let mean = products.sum::<f64>() / f64::from(n);
+            sum += (mean - 0.5) * (mean - 0.5);
+        }
+        let random = 2.0 / 144.0 / (f64::from(n) - 1.0);
+        sum / passes as f64 / random
+    }
+
+    /// The later pairs are paired with the first pair and with each other
+    /// as at random: on the grids that shuffle (25 × 40, 25 × 125, 100 ×
+    /// 100; `stratified_shuffle.rs`) and one that walks (N = 2 × 499), the
+    /// variance ratio of [`pairing_variance_ratio`] is 1 within its
+    /// sampling error. Over `K = 2000` passes the pass means are normal
+    /// (sums of `N` terms), so the ratio is `χ²_K/K`, of standard
+    /// deviation `√(2/K) = 0.032`; eight ratios at a family level of
+    /// 0.001, Šidák-corrected to 1.25·10⁻⁴ each, two-sided: |ratio − 1| ≤
+    /// 3.84·0.032 = 0.12. A shuffle of four rounds, whose rows kept their
+    /// differences in groups, measured 1.50 on 25 × 125; the negative
+    /// control, the first pairs of two seeds (both column by column, so
+    /// matched by a shift), measures hundreds.
+    #[test]
+    fn later_pairs_are_paired_at_random() {
+        const PASSES: u64 = 2000;
+        const TOLERANCE: f64 = 3.84 * 0.0316;
+        for n in [1000u32, 3125, 10_000, 998] {
+            let seq = Stratified::new(n, 11).unwrap();
+            for pairs in [[0, 1], [1, 2]] {
+                let ratio = pairing_variance_ratio(&seq, &seq, pairs, PASSES);
+                assert!(
+                    (ratio - 1.0).abs() <= TOLERANCE,
+                    "N {n} pairs {pairs:?}: {ratio}"
+                );
+            }
+        }
+        let other = Stratified::new(3125, 12).unwrap();
+        let first = Stratified::new(3125, 11).unwrap();
+        let ratio = pairing_variance_ratio(&first, &other, [0, 0], PASSES);
+        assert!(ratio > 1.0 + TOLERANCE, "control: {ratio}");
     }
 
     #[test]

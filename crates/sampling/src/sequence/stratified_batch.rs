@@ -11,8 +11,8 @@
 //!   lanes when the grid's sides are below 2¹⁶: [`reduce_u32_narrow`]), two
 //!   rotations ([`rotate`]) and two multiplications by `1/N` (in f32,
 //!   two fused multiply-adds by its two f32 parts: `stratified_f32.rs`);
-//! * the spread sub-strata `r·g_y mod ny` and `c·g_x mod nx`, looked up in
-//!   a table of `nx` or `ny` entries (vector gathers).
+//! * the spread sub-strata `r·g_y mod ny` and `c·g_x mod nx`, computed in
+//!   32-bit lanes with the quotient estimated in f32 ([`Spread`]).
 //!
 //! The first pair goes column by column ([`Grid::first_pair_cell`]), so
 //! its points come in runs of one column ([`fill_first_pair`]): the
@@ -22,7 +22,10 @@
 //! spread (a table read by contiguous loads, or the run's first spread
 //! plus a tabulated step), two rotations and the two coordinates.
 //!
-//! The cells of later pairs come
+//! The cells of later pairs come, on grids of at least 16 columns whose
+//! `N` is not a power of two, from the Feistel rounds of
+//! `stratified_shuffle.rs`: one division for a block's first position,
+//! then round by round over the block. On the other grids they come
 //! from a keyed permutation walked in blocks: one walk step for a whole
 //! block (branch-free, structure of arrays), and nothing more when `N` is a
 //! power of two (the step is then a permutation of `0..N`). Otherwise the
@@ -42,6 +45,7 @@
 
 use super::stratified_f32::F32Coordinate;
 use super::stratified_pow2::{fixed_sum, PowerOfTwoGrid};
+use super::stratified_shuffle::{CellShuffle, MIN_SIDE};
 use super::{hash2, mix64};
 use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
 
@@ -352,6 +356,17 @@ pub(super) fn rotate(x: u32, s: u32, m: u32) -> u32 {
     }
 }
 
+/// [`rotate`] for `m ≤ 2³¹`, the same value: `t = x + s < 2m` does not
+/// overflow, and the unsigned minimum of `t` and `t − m` (which wraps
+/// above `t` when `t < m`) is `t mod m`. Three vector instructions where
+/// [`rotate`]'s unsigned comparison takes six on AVX2.
+#[inline(always)]
+pub(super) fn rotate_narrow(x: u32, s: u32, m: u32) -> u32 {
+    debug_assert!(m <= 1 << 31 && x < m && s <= m);
+    let t = x + s;
+    t.min(t.wrapping_sub(m))
+}
+
 /// The unit (an integer coprime to `n`) nearest `n·(√5 − 1)/2`: the
 /// multiplier of the spreads ([`Spread`]) and of the first pair's column
 /// order. Its multiples modulo `n` are spread as evenly as any (the
@@ -382,13 +397,16 @@ pub(super) fn golden_unit(n: u32) -> u32 {
 ///
 /// Tabulated for `m ≤ 2¹⁶` (`m` entries: a stratified sequence of `N`
 /// samples builds `√N`-sized tables, and the study builds thousands of
-/// short sequences), so that a block's lookups compile to vector gathers
-/// (the remainder of a product costs as much as the rest of the point);
-/// computed per point beyond.
+/// short sequences) for the lookups of one point at a time and the first
+/// pair's runs of rows (contiguous loads); computed per point beyond.
+/// A block of scattered lookups ([`Spread::get_block`]) computes instead,
+/// in f32 lanes ([`Spread::compute_narrow`]).
 #[derive(Clone, Debug)]
 struct Spread {
     m: u32,
     g: u32,
+    /// `1/m`, rounded to f32.
+    inv_m: f32,
     table: Option<std::sync::Arc<[u32]>>,
 }
 
@@ -400,7 +418,12 @@ impl Spread {
         let g = golden_unit(m);
         let table =
             (m <= Self::TABULATED).then(|| (0..m).map(|x| Self::compute(x, g, m)).collect());
-        Spread { m, g, table }
+        Spread {
+            m,
+            g,
+            inv_m: 1.0 / m as f32,
+            table,
+        }
     }
 
     /// `x·g mod m`, computed.
@@ -409,32 +432,50 @@ impl Spread {
         ((u64::from(x) * u64::from(g)) % u64::from(m)) as u32
     }
 
+    /// `x·g mod m` for `x, g < m ≤ 2¹⁶`, in 32-bit lanes: the product
+    /// `x·g < 2³²` is exact in `u32`, and the quotient is estimated in f32
+    /// as `fl(fl(x·g)·fl(1/m))`, three roundings of relative error `2⁻²⁴`
+    /// each, so within `3·2⁻²⁴·2¹⁶ < 1/2` of `x·g/m < 2¹⁶`: rounded to an
+    /// integer, it is the floor or one above. The remainder by that
+    /// estimate is then in `[−m, m)`, and one step brings it into `0..m`. The same
+    /// value as [`Spread::compute`]; vector units have no integer division
+    /// and, before AVX-512, no gathers worth a table lookup (measured on an
+    /// AVX2 host, where a block's lookups ran one lane at a time).
+    #[inline(always)]
+    fn compute_narrow(x: u32, g: u32, m: u32, inv_m: f32) -> u32 {
+        // The quotient rounded to an integer by adding 2²³ (its f32 then
+        // has the integer in its low mantissa bits): a bit cast where `as`
+        // would check for NaN and saturate lane by lane.
+        const ROUND: f32 = 8_388_608.0;
+        let product = x.wrapping_mul(g);
+        let quotient = (x as f32 * g as f32 * inv_m + ROUND).to_bits() - ROUND.to_bits();
+        let rest = product.wrapping_sub(quotient.wrapping_mul(m)) as i32;
+        (if rest < 0 { rest + m as i32 } else { rest }) as u32
+    }
+
     /// `x·g mod m` for `x < m`.
     #[inline(always)]
     fn get(&self, x: u32) -> u32 {
         match &self.table {
             // x < m = the table's length: `unwrap_or` is never taken, and
-            // unlike indexing it needs no panic path, so the compiler can
-            // gather a block of lookups.
+            // unlike indexing it needs no panic path.
             Some(table) => table.get(x as usize).copied().unwrap_or(0),
             None => Self::compute(x, self.g, self.m),
         }
     }
 
     /// `out[k] = x[k]·g mod m` for every `k`: one branch for the block, then
-    /// a loop the compiler turns into gathers.
+    /// a loop in vector lanes.
     #[inline(always)]
     fn get_block(&self, x: &[u32], out: &mut [u32]) {
-        match &self.table {
-            Some(table) => {
-                for (out, &x) in out.iter_mut().zip(x) {
-                    *out = table.get(x as usize).copied().unwrap_or(0);
-                }
+        let (m, g, inv_m) = (self.m, self.g, self.inv_m);
+        if m <= Self::TABULATED {
+            for (out, &x) in out.iter_mut().zip(x) {
+                *out = Self::compute_narrow(x, g, m, inv_m);
             }
-            None => {
-                for (out, &x) in out.iter_mut().zip(x) {
-                    *out = Self::compute(x, self.g, self.m);
-                }
+        } else {
+            for (out, &x) in out.iter_mut().zip(x) {
+                *out = Self::compute(x, g, m);
             }
         }
     }
@@ -477,6 +518,10 @@ pub(super) struct Grid {
     /// The grid's masks and shifts when `N`, `nx` and `ny` are powers of
     /// two: then the batch kernel is `stratified_pow2.rs`'s.
     power_of_two: Option<PowerOfTwoGrid>,
+    /// Whether the later pairs' cells come from the rounds of
+    /// `stratified_shuffle.rs` (`N` not a power of two and `nx ≥`
+    /// [`MIN_SIDE`]) rather than from the cycle walk of [`Domain`].
+    shuffled: bool,
 }
 
 impl Grid {
@@ -508,6 +553,7 @@ impl Grid {
             row_steps,
             by_ny: FastDiv::new(ny),
             power_of_two: PowerOfTwoGrid::new(n, nx, ny),
+            shuffled: !n.is_power_of_two() && nx >= MIN_SIDE,
         }
     }
 
@@ -646,9 +692,7 @@ impl Grid {
         reduce: impl Fn(u32, u32) -> u32,
         jitter_hash: impl Fn(u64, u32) -> u32,
     ) -> [(u32, u32); 2] {
-        let column = ColumnParts::new(self, keys, c, column_spread, &reduce);
-        let t = reduce(hash_u32(keys.tau, r), self.nx);
-        let [kx, ky] = column.strata(self, r, t, row_spread);
+        let [kx, ky] = self.spread_strata(keys, [c, r], [column_spread, row_spread], reduce);
         // 32 hashed bits per axis, the two halves of the jitter key: a
         // resolution of 2⁻³²/N, finer than the 2⁻³² of a Sobol point.
         let (high, low) = (
@@ -656,6 +700,24 @@ impl Grid {
             jitter_hash(keys.jitter >> 32, i),
         );
         [(kx, high), (ky, low)]
+    }
+}
+
+impl Grid {
+    /// The strata `[k_x, k_y]` of [`Grid::spread_parts`]: the column's and
+    /// the row's shifts, hashed and reduced by `reduce`, applied to the
+    /// spread row and column.
+    #[inline(always)]
+    fn spread_strata(
+        &self,
+        keys: &PairKeys,
+        [c, r]: [u32; 2],
+        [column_spread, row_spread]: [u32; 2],
+        reduce: impl Fn(u32, u32) -> u32,
+    ) -> [u32; 2] {
+        let column = ColumnParts::new(self, keys, c, column_spread, &reduce);
+        let t = reduce(hash_u32(keys.tau, r), self.nx);
+        column.strata(self, r, t, row_spread)
     }
 }
 
@@ -671,6 +733,9 @@ const TAG_JITTER: u64 = 0x6a69_7474_6572; // "jitter"
 pub(super) struct PairKeys {
     /// The cell permutation of dimensions `d > 0`, keyed by `hash2(h, "cell")`.
     pub cell: PermuteKeys,
+    /// The cell order of dimensions `d > 0` on the grids that shuffle
+    /// (`stratified_shuffle.rs`), keyed by the same hash.
+    pub shuffle: CellShuffle,
     /// The first pair's offset `b = reduce(hash2(h, "cell"), N)`.
     pub offset: u32,
     /// Column shifts `s_c`: [`hash_u32`] of `c` keyed `hash2(h, "sigma")`.
@@ -691,6 +756,7 @@ impl PairKeys {
         let cell = hash2(h, TAG_CELL);
         PairKeys {
             cell: PermuteKeys::new(cell),
+            shuffle: CellShuffle::new(cell),
             offset: reduce(cell, grid.n),
             sigma: hash2(h, TAG_SIGMA),
             tau: hash2(h, TAG_TAU),
@@ -700,12 +766,17 @@ impl PairKeys {
 }
 
 /// The cell of position `i` of a pass in dimension `dim`: the ordered cell
-/// for `dim = 0`, the keyed permutation's otherwise. The point-by-point
+/// for `dim = 0`, otherwise the shuffled one (`stratified_shuffle.rs`) or
+/// the keyed permutation's, as the grid says. The point-by-point
 /// definition the batch kernel reproduces.
 #[inline]
 pub(super) fn cell_of(grid: &Grid, keys: &PairKeys, dim: u64, i: u32) -> u32 {
     if dim == 0 {
         let (c, r) = grid.first_pair_cell(i, keys.offset);
+        r * grid.nx + c
+    } else if grid.shuffled {
+        let (a, b) = grid.by_ny.div_rem(i);
+        let [c, r] = keys.shuffle.cell::<true>([a, b], [grid.nx, grid.ny]);
         r * grid.nx + c
     } else {
         Domain::new(grid.n).permute(i, &keys.cell)
@@ -904,13 +975,39 @@ fn fill_general_with<T, const SHORT_JITTER: bool>(
     for start in (0..len).step_by(BLOCK) {
         let m = BLOCK.min(len - start);
         let base = first + start as u32;
-        let cell = &mut c[..m];
-        for (k, x) in cell.iter_mut().enumerate() {
-            *x = base + k as u32;
-        }
-        cells.permute_block(cell, |_| &keys.cell);
-        for k in 0..m {
-            (c[k], r[k]) = grid.split(c[k]);
+        if grid.shuffled {
+            let sides = [nx, ny];
+            let shuffle = keys.shuffle;
+            // The same cells either way; the narrow form vectorises better.
+            if ny as usize >= BLOCK {
+                // Consecutive positions: one division for the block, and
+                // at most one step to the next column in it.
+                let (a0, b0) = grid.by_ny.div_rem(base);
+                for k in 0..m {
+                    let b = b0 + k as u32;
+                    let next = b >= ny;
+                    c[k] = a0 + u32::from(next);
+                    r[k] = if next { b - ny } else { b };
+                }
+            } else {
+                for k in 0..m {
+                    (c[k], r[k]) = grid.by_ny.div_rem(base + k as u32);
+                }
+            }
+            if nx < 1 << 16 && ny < 1 << 16 {
+                shuffle.cells::<false>(&mut c[..m], &mut r[..m], sides);
+            } else {
+                shuffle.cells::<true>(&mut c[..m], &mut r[..m], sides);
+            }
+        } else {
+            let cell = &mut c[..m];
+            for (k, x) in cell.iter_mut().enumerate() {
+                *x = base + k as u32;
+            }
+            cells.permute_block(cell, |_| &keys.cell);
+            for k in 0..m {
+                (c[k], r[k]) = grid.split(c[k]);
+            }
         }
         grid.column_spread.get_block(&c[..m], &mut spread_c[..m]);
         grid.row_spread.get_block(&r[..m], &mut spread_r[..m]);
@@ -1106,12 +1203,22 @@ fn block_points<T>(
     reduce: impl Fn(u32, u32) -> u32 + Copy,
     (jitter_hash, store): (impl Fn(u64, u32) -> u32 + Copy, impl Fn((u32, u32)) -> T),
 ) {
-    for k in 0..x.len() {
+    // Two loops, strata then jitters and coordinates, each a short chain
+    // of dependent operations per lane that the processor overlaps across
+    // lanes (one loop of both waited on their latency on an AVX2 host);
+    // the values are [`Grid::spread_parts`]'s.
+    let m = x.len();
+    let (mut strata_x, mut strata_y) = ([0u32; BLOCK], [0u32; BLOCK]);
+    for k in 0..m {
         let cell = [c[k], r[k]];
         let spread = [spread_c[k], spread_r[k]];
+        [strata_x[k], strata_y[k]] = grid.spread_strata(keys, cell, spread, reduce);
+    }
+    let (jitter_x, jitter_y) = (keys.jitter, keys.jitter >> 32);
+    for k in 0..m {
         let i = base + k as u32;
-        let [px, py] = grid.spread_parts(keys, cell, spread, i, reduce, jitter_hash);
-        (x[k], y[k]) = (store(px), store(py));
+        x[k] = store((strata_x[k], jitter_hash(jitter_x, i)));
+        y[k] = store((strata_y[k], jitter_hash(jitter_y, i)));
     }
 }
 
@@ -1163,17 +1270,41 @@ mod tests {
         }
     }
 
+    /// The spreads computed in f32 lanes are `x·g mod m`, on every `x` of
+    /// sides short and long, odd and even, prime, just below and at `2¹⁶`
+    /// (where `x·g` nears `2³²` and the f32 quotient is least precise).
+    #[test]
+    fn narrow_spreads_are_exact() {
+        for m in [
+            1u32, 2, 3, 25, 40, 1000, 1250, 2500, 4099, 65_521, 65_535, 65_536,
+        ] {
+            let spread = Spread::new(m);
+            let (g, inv_m) = (spread.g, spread.inv_m);
+            for x in 0..m {
+                let want = Spread::compute(x, g, m);
+                assert_eq!(
+                    Spread::compute_narrow(x, g, m, inv_m),
+                    want,
+                    "{x}·{g} mod {m}"
+                );
+            }
+        }
+    }
+
     /// Batches that start anywhere in a pass and cross block boundaries
     /// give the cursor's values, on both kinds of cell order (the first
     /// pair's and the keyed permutation's).
-    /// N = 10 000 walks its permutation; N = 2¹⁴ (a whole power of two)
-    /// never does, and skips the listing of walking lanes. For N = 10 000
+    /// N = 10 000 (100 × 100) shuffles its later pairs' cells
+    /// (`stratified_shuffle.rs`), in 32-bit lanes, and N = 16·65 537 (a
+    /// side of 2¹⁶ or more) in 64-bit ones; N = 12 (3 × 4, too few
+    /// columns to shuffle) walks its permutation; N = 2¹⁴ (a whole power
+    /// of two) never walks, and skips the listing of walking lanes. For N = 10 000
     /// (100 rows) the batches of 4 096 and of a whole pass take the first
     /// pair's tabulated row shifts, the shorter ones hash them per point;
     /// the whole pass crosses the point where its column order wraps.
     #[test]
     fn batches_give_the_cursor_values_from_any_start() {
-        for n in [10_000u32, 1 << 14] {
+        for n in [10_000u32, 16 * 65_537, 12, 1 << 14] {
             batches_match_the_cursor(n);
         }
     }
@@ -1187,8 +1318,8 @@ mod tests {
             for (start, len) in [
                 (0u64, 7usize),
                 (250, 300),
-                (n - 10, 10),
-                (n - 1_000, 1_000),
+                (n.saturating_sub(10), 10),
+                (n.saturating_sub(1_000), 1_000),
                 (1_234, 4_096),
                 (0, whole),
             ] {
@@ -1255,7 +1386,7 @@ mod tests {
 
     #[test]
     fn reduce_and_rotate_are_exact() {
-        for m in [1u32, 2, 3, 1000, u32::MAX] {
+        for m in [1u32, 2, 3, 1000, 1 << 31, u32::MAX] {
             for h in [0u64, 1, u64::MAX, 1 << 63, 0x1234_5678_9abc_def0] {
                 let want = ((u128::from(h) * u128::from(m)) >> 64) as u32;
                 assert_eq!(reduce(h, m), want, "h {h:#x} m {m}");
@@ -1264,6 +1395,9 @@ mod tests {
                 for s in [0u32, 1.min(m), m / 2, m - 1, m] {
                     let want = ((u64::from(x) + u64::from(s)) % u64::from(m)) as u32;
                     assert_eq!(rotate(x, s, m), want, "x {x} s {s} m {m}");
+                    if m <= 1 << 31 {
+                        assert_eq!(rotate_narrow(x, s, m), want, "x {x} s {s} m {m}");
+                    }
                 }
             }
         }

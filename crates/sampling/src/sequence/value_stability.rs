@@ -158,7 +158,14 @@ fn stratified_values_are_pinned() {
     // (0x3f9a_458c_2f01_bf5d, 0x3fc5_1362_8126_63e5), (0x3fee_17c7_f8af_d8c3,
     // 0x3f9a_bee5_4d61_113d); the digests 0xf7e7_137e_50ba_c171,
     // 0xb39a_e19d_0778_4006, 0x8287_3b6d_fe1e_bfed, 0x5575_0201_bf8e_6d66,
-    // 0x98b3_7d6e_c52c_7bb0.
+    // 0x98b3_7d6e_c52c_7bb0. Re-pinned when the later pairs' cells on
+    // grids with at least 16 columns (N not a power of two) came from five
+    // Feistel rounds on the column and row instead of the cycle walk
+    // (`stratified_shuffle.rs`): another relabelling of each pass's points
+    // (which sample gets which cell of a later pair; the first pair, N =
+    // 16 and N = 13 did not move). The digests of N = 1000, 3 125 000 and
+    // 2³² − 1 were 0x84f4_af5c_3972_fcea, 0xf007_a30a_a3ce_7d5b and
+    // 0xe359_eab0_03ec_ae66.
     let pinned: [(u64, u64, u64); 3] = [
         (0, 0x3fe7_fc54_83cb_c58a, 0x3fef_0bfc_42e7_828b),
         (1, 0x3fe7_f9d2_c3a1_f9b3, 0x3fef_100b_3923_1932),
@@ -172,10 +179,10 @@ fn stratified_values_are_pinned() {
     }
     let digests: [u64; 5] = [
         0x81bf_8873_d4b8_6e09,
-        0x84f4_af5c_3972_fcea,
+        0xd024_6513_cb92_4ede,
         0x0c0f_f050_709d_6bb5,
-        0xf007_a30a_a3ce_7d5b,
-        0xe359_eab0_03ec_ae66,
+        0x7d08_5c88_7088_33a3,
+        0x3621_4f34_3eed_7030,
     ];
     for ((n, seed), want) in STRATIFIED_CONFIGS.into_iter().zip(digests) {
         let seq = Stratified::new(n, seed).unwrap();
