@@ -448,7 +448,8 @@ impl Spread {
         // would check for NaN and saturate lane by lane.
         const ROUND: f32 = 8_388_608.0;
         let product = x.wrapping_mul(g);
-        let quotient = (x as f32 * g as f32 * inv_m + ROUND).to_bits() - ROUND.to_bits();
+        let (x_f, g_f) = (x as i32 as f32, g as i32 as f32); // < 2¹⁶: exact
+        let quotient = (x_f * g_f * inv_m + ROUND).to_bits() - ROUND.to_bits();
         let rest = product.wrapping_sub(quotient.wrapping_mul(m)) as i32;
         (if rest < 0 { rest + m as i32 } else { rest }) as u32
     }
