@@ -22,10 +22,10 @@
 //! spread (a table read by contiguous loads, or the run's first spread
 //! plus a tabulated step), two rotations and the two coordinates.
 //!
-//! The cells of later pairs come, on grids of at least 16 columns whose
-//! `N` is not a power of two, from the Feistel rounds of
-//! `stratified_shuffle.rs`: one division for a block's first position,
-//! then round by round over the block. On the other grids they come
+//! The cells of later pairs come, on grids of at least 16 columns and at
+//! most `nx²/4` rows whose `N` is not a power of two, from the Feistel
+//! rounds of `stratified_shuffle.rs`: one division for a block's first
+//! position, then round by round over the block. On the other grids they come
 //! from a keyed permutation walked in blocks: one walk step for a whole
 //! block (branch-free, structure of arrays), and nothing more when `N` is a
 //! power of two (the step is then a permutation of `0..N`). Otherwise the
@@ -45,7 +45,7 @@
 
 use super::stratified_f32::F32Coordinate;
 use super::stratified_pow2::{fixed_sum, PowerOfTwoGrid};
-use super::stratified_shuffle::{CellShuffle, MIN_SIDE};
+use super::stratified_shuffle::{shuffles, CellShuffle};
 use super::{hash2, mix64};
 use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
 
@@ -520,8 +520,8 @@ pub(super) struct Grid {
     /// two: then the batch kernel is `stratified_pow2.rs`'s.
     power_of_two: Option<PowerOfTwoGrid>,
     /// Whether the later pairs' cells come from the rounds of
-    /// `stratified_shuffle.rs` (`N` not a power of two and `nx ≥`
-    /// [`MIN_SIDE`]) rather than from the cycle walk of [`Domain`].
+    /// `stratified_shuffle.rs` (as [`shuffles`] says) rather than from the
+    /// cycle walk of [`Domain`].
     shuffled: bool,
 }
 
@@ -554,7 +554,7 @@ impl Grid {
             row_steps,
             by_ny: FastDiv::new(ny),
             power_of_two: PowerOfTwoGrid::new(n, nx, ny),
-            shuffled: !n.is_power_of_two() && nx >= MIN_SIDE,
+            shuffled: shuffles(n, nx, ny),
         }
     }
 
@@ -1296,9 +1296,10 @@ mod tests {
     /// give the cursor's values, on both kinds of cell order (the first
     /// pair's and the keyed permutation's).
     /// N = 10 000 (100 × 100) shuffles its later pairs' cells
-    /// (`stratified_shuffle.rs`), in 32-bit lanes, and N = 16·65 537 (a
-    /// side of 2¹⁶ or more) in 64-bit ones; N = 12 (3 × 4, too few
-    /// columns to shuffle) walks its permutation; N = 2¹⁴ (a whole power
+    /// (`stratified_shuffle.rs`); N = 16·65 537 (far longer than wide) and
+    /// N = 12 (3 × 4, too few columns to shuffle) walk their permutation
+    /// (the rounds' 64-bit form, for sides of 2¹⁶ or more, is checked
+    /// against the 32-bit one in `stratified_shuffle.rs`); N = 2¹⁴ (a whole power
     /// of two) never walks, and skips the listing of walking lanes. For N = 10 000
     /// (100 rows) the batches of 4 096 and of a whole pass take the first
     /// pair's tabulated row shifts, the shorter ones hash them per point;
