@@ -319,6 +319,9 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// tested there to pair as at random; only the stratified rows that read a
 /// later pair (MIS's second point) moved, new draws of the same
 /// estimators.
+/// Re-pinned when those rounds moved to 16-bit lanes with a 16-bit hash
+/// (the same module): the digest was 0x327c_8b43_461d_137d; another
+/// relabelling of the same kind, and the same rows moved.
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -336,7 +339,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0x327c_8b43_461d_137d;
+const PINNED: u64 = 0xdc11_fd03_8791_5a58;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

@@ -18,9 +18,9 @@
 //!   hashed from `(seed, pass, d)`, so that the cells of different pairs
 //!   are paired at random (the idea of pbrt-v4's `StratifiedSampler`, §8.5,
 //!   which hashes a permutation per dimension): on a grid whose columns
-//!   number `nx ≥ 16`, whose rows number at most `nx²/4`, and whose `N`
-//!   is not a power of two, five Feistel rounds on the column and the row
-//!   (`stratified_shuffle.rs`); otherwise
+//!   number `nx ≥ 16`, whose rows number at most `nx²/4` and `2¹⁵`, and
+//!   whose `N` is not a power of two, five Feistel rounds on the column
+//!   and the row (`stratified_shuffle.rs`); otherwise
 //!   a keyed bijection of `w`-bit integers walked until it falls in `0..N`
 //!   (`stratified_batch.rs`; for a power of two it never walks).
 //!
