@@ -45,7 +45,7 @@
 
 use super::stratified_f32::F32Coordinate;
 use super::stratified_pow2::{fixed_sum, PowerOfTwoGrid};
-use super::stratified_shuffle::{shuffles, CellShuffle, MAX_SIDE};
+use super::stratified_shuffle::{shuffles, CellShuffle};
 use super::{hash2, mix64};
 use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
 
@@ -503,18 +503,17 @@ pub(super) struct Grid {
     /// `q·g_y mod ny` for `q < BLOCK`: the row spreads of a run of
     /// consecutive rows, added to the spread of its first row.
     row_steps: std::sync::Arc<[u32; BLOCK]>,
-    /// `nx` and `ny` in every 16-bit lane of a block, the sides the rounds
-    /// of `stratified_shuffle.rs` read lane by lane ([`CellShuffle::cells`]).
-    side_lanes: std::sync::Arc<[[u16; BLOCK]; 2]>,
     /// `⌊p / ny⌋` and `p mod ny` of a position `p` of the first pair's order.
     by_ny: FastDiv,
     /// The grid's masks and shifts when `N`, `nx` and `ny` are powers of
     /// two: then the batch kernel is `stratified_pow2.rs`'s.
     power_of_two: Option<PowerOfTwoGrid>,
-    /// Whether the later pairs' cells come from the rounds of
+    /// When the later pairs' cells come from the rounds of
     /// `stratified_shuffle.rs` (as [`shuffles`] says) rather than from the
-    /// cycle walk of [`Domain`].
-    shuffled: bool,
+    /// cycle walk of [`Domain`]: `nx` and `ny` in every 16-bit lane of a
+    /// block, the sides the rounds read lane by lane
+    /// ([`CellShuffle::cells`]).
+    shuffle_sides: Option<std::sync::Arc<[[u16; BLOCK]; 2]>>,
 }
 
 impl Grid {
@@ -544,13 +543,10 @@ impl Grid {
             row_spread,
             column_spread,
             row_steps,
-            side_lanes: std::sync::Arc::new([
-                [nx.min(MAX_SIDE) as u16; BLOCK],
-                [ny.min(MAX_SIDE) as u16; BLOCK],
-            ]),
             by_ny: FastDiv::new(ny),
             power_of_two: PowerOfTwoGrid::new(n, nx, ny),
-            shuffled: shuffles(n, nx, ny),
+            shuffle_sides: shuffles(n, nx, ny)
+                .then(|| std::sync::Arc::new([[nx as u16; BLOCK], [ny as u16; BLOCK]])),
         }
     }
 
@@ -771,7 +767,7 @@ pub(super) fn cell_of(grid: &Grid, keys: &PairKeys, dim: u64, i: u32) -> u32 {
     if dim == 0 {
         let (c, r) = grid.first_pair_cell(i, keys.offset);
         r * grid.nx + c
-    } else if grid.shuffled {
+    } else if grid.shuffle_sides.is_some() {
         let (a, b) = grid.by_ny.div_rem(i);
         let [c, r] = keys.shuffle.cell([a, b], [grid.nx, grid.ny]);
         r * grid.nx + c
@@ -974,7 +970,7 @@ fn fill_general_with<T, const SHORT_JITTER: bool>(
     for start in (0..len).step_by(BLOCK) {
         let m = BLOCK.min(len - start);
         let base = first + start as u32;
-        if grid.shuffled {
+        if let Some(sides) = grid.shuffle_sides.as_deref() {
             // Sides of at most 2¹⁵: the rounds run in 16-bit lanes.
             let (a, b) = (&mut column16[..m], &mut row16[..m]);
             if ny as usize >= BLOCK {
@@ -993,7 +989,7 @@ fn fill_general_with<T, const SHORT_JITTER: bool>(
                     (a[k], b[k]) = (column as u16, row as u16);
                 }
             }
-            let [nx_lanes, ny_lanes] = &*grid.side_lanes;
+            let [nx_lanes, ny_lanes] = sides;
             keys.shuffle.cells(a, b, [&nx_lanes[..m], &ny_lanes[..m]]);
             for k in 0..m {
                 (c[k], r[k]) = (u32::from(a[k]), u32::from(b[k]));
