@@ -150,8 +150,46 @@ impl PowerOfTwoGrid {
         }
     }
 
-    /// [`PowerOfTwoGrid::fill_pass`] with the shifts' and the jitters'
+    /// Point `i`'s strata and jitter bits, `((kx, hx), (ky, hy))`, of
+    /// request pair `dim` (0: the first pair, column by column; else the
+    /// cells permuted over `domain`), with the shifts' and the jitters'
     /// hashes cut short ([`hash_u32_cut`]) or whole, as the flags say.
+    #[inline(always)]
+    fn parts<const SHORT_SHIFTS: bool, const SHORT_JITTER: bool>(
+        self,
+        keys: &PairKeys,
+        dim: u64,
+        domain: Domain,
+        i: u32,
+    ) -> ((u32, u32), (u32, u32)) {
+        let (n_mask, nx_mask, ny_mask) = self.masks();
+        let (log_nx, log_ny) = (self.log_nx, self.log_ny);
+        let (c, r) = if dim == 0 {
+            // Column by column: p = (i + b) mod N, column ⌊p / ny⌋·g_x.
+            let p = i.wrapping_add(keys.offset) & n_mask;
+            (
+                (p >> log_ny).wrapping_mul(self.column_unit) & nx_mask,
+                p & ny_mask,
+            )
+        } else {
+            let cell = domain.step(i, &keys.cell) & n_mask;
+            (cell & nx_mask, cell >> log_nx)
+        };
+        let column_spread = c.wrapping_mul(self.column_unit) & nx_mask;
+        let row_spread = r.wrapping_mul(self.row_unit) & ny_mask;
+        // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), 0 for log = 0.
+        let s = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.sigma, c), 32 - log_ny);
+        let t = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.tau, r), 32 - log_nx);
+        let kx = (c << log_ny) | ((row_spread + s) & ny_mask);
+        let ky = (r << log_nx) | ((column_spread + t) & nx_mask);
+        (
+            (kx, hash_u32_cut::<SHORT_JITTER>(keys.jitter, i)),
+            (ky, hash_u32_cut::<SHORT_JITTER>(keys.jitter >> 32, i)),
+        )
+    }
+
+    /// [`PowerOfTwoGrid::fill_pass`] with the hashes cut short or whole,
+    /// as the flags say ([`PowerOfTwoGrid::parts`]).
     #[inline(always)]
     fn fill<T, const SHORT_SHIFTS: bool, const SHORT_JITTER: bool>(
         self,
@@ -162,37 +200,38 @@ impl PowerOfTwoGrid {
         y: &mut [T],
         store: impl Fn((u32, u32)) -> T,
     ) {
-        let (n_mask, nx_mask, ny_mask) = self.masks();
-        let (log_nx, log_ny) = (self.log_nx, self.log_ny);
+        let (n_mask, _, _) = self.masks();
         let domain = Domain::new(n_mask.wrapping_add(1).max(1));
-        let offset = keys.offset;
-        let jitter_x = keys.jitter;
-        let jitter_y = keys.jitter >> 32;
-        for (k, (x, y)) in x.iter_mut().zip(y.iter_mut()).enumerate() {
-            let i = first.wrapping_add(k as u32);
-            let (c, r) = if dim == 0 {
-                // Column by column: p = (i + b) mod N, column ⌊p / ny⌋·g_x.
-                let p = i.wrapping_add(offset) & n_mask;
-                (
-                    (p >> log_ny).wrapping_mul(self.column_unit) & nx_mask,
-                    p & ny_mask,
-                )
-            } else {
-                let cell = domain.step(i, &keys.cell) & n_mask;
-                (cell & nx_mask, cell >> log_nx)
-            };
-            let column_spread = c.wrapping_mul(self.column_unit) & nx_mask;
-            let row_spread = r.wrapping_mul(self.row_unit) & ny_mask;
-            // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), 0 for log = 0.
-            let s = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.sigma, c), 32 - log_ny);
-            let t = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.tau, r), 32 - log_nx);
-            let kx = (c << log_ny) | ((row_spread + s) & ny_mask);
-            let ky = (r << log_nx) | ((column_spread + t) & nx_mask);
-            *x = store((kx, hash_u32_cut::<SHORT_JITTER>(jitter_x, i)));
-            *y = store((ky, hash_u32_cut::<SHORT_JITTER>(jitter_y, i)));
+        // Spans in two stages: the integers of SPAN points, then their
+        // coordinates. In one loop the compiler ran the 32-bit integer
+        // work as many lanes as an f64 vector has (four on AVX2), half a
+        // vector of them.
+        let (mut kx, mut hx) = ([0u32; SPAN], [0u32; SPAN]);
+        let (mut ky, mut hy) = ([0u32; SPAN], [0u32; SPAN]);
+        for (s, (xs, ys)) in x.chunks_mut(SPAN).zip(y.chunks_mut(SPAN)).enumerate() {
+            let m = xs.len().min(ys.len());
+            let base = first.wrapping_add((s * SPAN) as u32);
+            let (kx, hx, ky, hy) = (&mut kx[..m], &mut hx[..m], &mut ky[..m], &mut hy[..m]);
+            for j in 0..m {
+                ((kx[j], hx[j]), (ky[j], hy[j])) = self.parts::<SHORT_SHIFTS, SHORT_JITTER>(
+                    keys,
+                    dim,
+                    domain,
+                    base.wrapping_add(j as u32),
+                );
+            }
+            let (xs, ys) = (&mut xs[..m], &mut ys[..m]);
+            for j in 0..m {
+                xs[j] = store((kx[j], hx[j]));
+                ys[j] = store((ky[j], hy[j]));
+            }
         }
     }
 }
+
+/// Points whose integers [`PowerOfTwoGrid::fill`] computes before their
+/// coordinates (4 KiB of integers, in the first-level cache).
+const SPAN: usize = 256;
 
 /// The sum `k + h·2⁻³²` of stratum `k` and jitter bits `h`, rounded to
 /// f64 (exact while `k < 2²¹`): the reference the kernels' coordinates
