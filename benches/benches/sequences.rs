@@ -9,8 +9,9 @@
 //! uses N = 3 125 000, one replicate of a 5·10⁷-sample estimate (a
 //! 1250 × 2500 grid), and N = 2²⁰, one of a 2²⁴-sample estimate's (a
 //! 1024 × 1024 grid, where the keyed permutation of request 1 needs no
-//! cycle walk). The `mcg stream` rows are the independent estimator's
-//! stream, block by block, in each instruction set.
+//! cycle walk). The `chunk stream` rows are the independent estimator's
+//! stream (a chunk's window of the run's SplitMix64 stream), block by
+//! block, in each instruction set.
 
 use std::hint::black_box;
 
@@ -112,44 +113,52 @@ fn bench_split<T: Copy + Default>(
     });
 }
 
-/// The independent estimator's own stream (`McgStream`, `Pcg64Mcg`'s
-/// numbers addressed by index), filled block by block as a chunk reads it:
-/// 4096 outputs as f64 and as f32 coordinates, in every instruction set
-/// this processor has.
-fn mcg_stream(c: &mut Criterion) {
-    use lambert_estimator::chunk::{McgStream, BLOCK};
+/// The independent estimator's own stream (`ChunkStream`, a chunk's
+/// window of the run's SplitMix64 stream), filled block by block as a
+/// chunk reads it: 4096 outputs as f64 and as f32 coordinates, in every
+/// instruction set this processor has.
+fn chunk_stream(c: &mut Criterion) {
+    use lambert_estimator::chunk::{ChunkStream, BLOCK};
     let mut g = c.benchmark_group("sequences");
     g.throughput(Throughput::Elements(CHUNK as u64));
-    let stream = McgStream::seed_from_u64(1);
-    // One fill per block, as the chunk loop calls it, for either precision.
-    macro_rules! blocks {
-        ($isa:expr, $fill:ident) => {
-            |first: u64, x: &mut [_], y: &mut [_]| {
-                $isa.run(
+    let stream = ChunkStream::new(1, 1, 0);
+    for isa in Isa::available() {
+        bench_split::<f64>(
+            &mut g,
+            format!("chunk stream {isa}"),
+            |first: u64, x: &mut [f64], y: &mut [f64]| {
+                isa.run(
                     #[inline(always)]
                     || {
                         for (k, (x, y)) in x.chunks_mut(BLOCK).zip(y.chunks_mut(BLOCK)).enumerate()
                         {
-                            stream.$fill(first + (k * BLOCK) as u64, x, y);
+                            stream.fill_2d(first + (k * BLOCK) as u64, x, y);
                         }
                     },
                 )
-            }
-        };
-    }
-    for isa in Isa::available() {
-        bench_split::<f64>(&mut g, format!("mcg stream {isa}"), blocks!(isa, fill_2d));
+            },
+        );
         bench_split::<f32>(
             &mut g,
-            format!("mcg stream f32 {isa}"),
-            blocks!(isa, fill_2d_f32),
+            format!("chunk stream f32 {isa}"),
+            |first: u64, x: &mut [f32], y: &mut [f32]| {
+                isa.run(
+                    #[inline(always)]
+                    || {
+                        for (k, (x, y)) in x.chunks_mut(BLOCK).zip(y.chunks_mut(BLOCK)).enumerate()
+                        {
+                            stream.fill_2d_f32_in(isa, first + (k * BLOCK) as u64, x, y);
+                        }
+                    },
+                )
+            },
         );
     }
     g.finish();
 }
 
 fn sequences(c: &mut Criterion) {
-    mcg_stream(c);
+    chunk_stream(c);
     bench_sequence(c, "independent", Independent::new(1));
     bench_sequence(c, "sobol", Sobol::new(1));
     bench_sequence(c, "stratified", Stratified::new(3_125_000, 1).unwrap());

@@ -2,8 +2,8 @@
 //! parallel runs, honest standard errors.
 //!
 //! Independent samples: the mean and standard error of the per-sample
-//! estimates (compensated sums; each chunk draws from its own PCG stream,
-//! rand_pcg's `Pcg64Mcg`, seeded from the run's seed and the chunk index). Stratified and Owen-scrambled
+//! estimates (compensated sums; each chunk reads its own window of the
+//! run's SplitMix64 stream, [`crate::chunk::ChunkStream`]). Stratified and Owen-scrambled
 //! Sobol samples are not independent, so their standard error comes from
 //! R = 16 independent randomizations (randomized QMC; Owen 1997, L'Ecuyer &
 //! Lemieux 2002): the samples are split into R replicates with independent
@@ -51,6 +51,7 @@ use glam::DVec2;
 use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::{SampleSequence, Sobol, Stratified};
 
+use crate::chunk::ChunkStream;
 use crate::interval::{
     honest_interval, ErrorSource, EstimateWarning, IntervalKind, PartTally, SampleSummary, LEVEL,
 };
@@ -71,7 +72,8 @@ pub const RQMC_REPLICATES: u64 = 16;
 /// Which sample sequence drives the estimate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SequenceKind {
-    /// Independent PCG streams.
+    /// Independent samples: the run's SplitMix64 stream, a window per
+    /// chunk ([`crate::chunk::ChunkStream`]).
     Independent,
     /// Jittered stratification (per replicate).
     Stratified,
@@ -455,13 +457,12 @@ pub fn estimate_with_isa(
         };
         (Estimate::new(), Vec::new(), summary, 0.0)
     } else if !rqmc {
-        let c: ChunkStats = run_chunked_merge(n, CHUNK_SIZE, config.threads, |chunk, range| {
+        let c: ChunkStats = run_chunked_merge(n, CHUNK_SIZE, config.threads, |_, range| {
             independent_chunk(
                 (&prepared, &f32s),
                 part_count,
                 scene,
                 config.seed,
-                chunk,
                 range,
                 isa,
             )
@@ -674,47 +675,50 @@ impl Mergeable for ChunkStats {
 
 /// Generates the uniform points of one chunk of an independent-sample
 /// estimate and hands them to `visit(k, u, u2)`, emitter by emitter (`u2`
-/// holds the second point of two-dimensional techniques): the chunk's own
-/// PCG stream, seeded from the run's seed and the chunk index — the same
-/// numbers [`crate::chunk::independent_chunk`] draws in lanes. The slow
-/// path that finds a failed estimate's first non-finite sample reads its
-/// points from here, one at a time, so that it sees the estimate's points.
+/// holds the second point of two-dimensional techniques): the chunk's
+/// window of the run's stream ([`ChunkStream`]), the same numbers
+/// [`crate::chunk::independent_chunk`] draws. The slow path that finds a
+/// failed estimate's first non-finite sample reads its points from here,
+/// so that it sees the estimate's points.
 fn independent_points(
     prepared: &[PreparedEmitter],
     seed: u64,
-    chunk: u64,
+    start: u64,
     n: usize,
     mut visit: impl FnMut(usize, &[DVec2], &[DVec2]),
 ) {
-    use rand_core::{RngCore, SeedableRng};
-    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(mix(seed, chunk));
+    let stream = chunk_stream(prepared, seed, start);
+    let (mut x, mut y) = (vec![0.0; n], vec![0.0; n]);
+    let mut points = |offset: u64, u: &mut [DVec2]| {
+        stream.fill_2d(offset, &mut x, &mut y);
+        for (p, (&x, &y)) in u.iter_mut().zip(x.iter().zip(&y)) {
+            *p = DVec2::new(x, y);
+        }
+    };
     let mut u = vec![DVec2::ZERO; n];
     let mut u2 = vec![DVec2::ZERO; n];
-    // One 64-bit output per 2-D point: 32 bits per coordinate, u = k·2⁻³².
-    let scale = 1.0 / (1u64 << 32) as f64;
-    let mut next = || {
-        let bits = rng.next_u64();
-        DVec2::new(
-            (bits >> 32) as f64 * scale,
-            (bits & 0xffff_ffff) as f64 * scale,
-        )
-    };
+    let mut offset = 0u64;
     for (k, p) in prepared.iter().enumerate() {
-        for x in u.iter_mut() {
-            *x = next();
-        }
+        points(offset, &mut u);
         if p.technique.dimensions() > 1 {
-            for x in u2.iter_mut() {
-                *x = next();
-            }
+            points(offset + n as u64, &mut u2);
         }
+        offset += (p.technique.dimensions() * n) as u64;
         visit(k, &u, &u2);
     }
 }
 
-/// One chunk of an independent-sample estimate: the chunk's own PCG stream
-/// (seeded from the run's seed and the chunk index, so the chunk's values do
-/// not depend on which thread runs it) gives the uniform points of every
+/// The window of the run's stream that the chunk starting at sample
+/// `start` reads ([`ChunkStream`]: D the emitters' dimensions per sample).
+fn chunk_stream(prepared: &[PreparedEmitter], seed: u64, start: u64) -> ChunkStream {
+    let dimensions: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
+    ChunkStream::new(seed, dimensions as u64, start)
+}
+
+/// One chunk of an independent-sample estimate: the chunk's window of the
+/// run's stream (fixed by the run's seed and the chunk's first sample, so
+/// the chunk's values do not depend on which thread runs it) gives the
+/// uniform points of every
 /// emitter, the emitters add their estimates into a buffer (counting their
 /// parts' hits), and the buffer is summarised by two passes
 /// ([`Estimate::from_values`], which counts the samples' hits). The work is
@@ -725,16 +729,16 @@ fn independent_chunk(
     part_count: usize,
     scene: &Scene,
     seed: u64,
-    chunk: u64,
     range: std::ops::Range<u64>,
     isa: Isa,
 ) -> ChunkStats {
     let n = (range.end - range.start) as usize;
-    let (receiver, seed) = (&scene.receiver, mix(seed, chunk));
+    let receiver = &scene.receiver;
+    let stream = chunk_stream(prepared, seed, range.start);
     let c = if f32s.is_empty() {
-        crate::chunk::independent_chunk(prepared, receiver, seed, n, isa)
+        crate::chunk::independent_chunk(prepared, receiver, stream, n, isa)
     } else {
-        crate::chunk::independent_chunk_f32(prepared, f32s, receiver, seed, n, isa)
+        crate::chunk::independent_chunk_f32(prepared, f32s, receiver, stream, n, isa)
     };
     chunk_stats(prepared, c, part_count)
 }
@@ -930,7 +934,7 @@ pub fn first_non_finite_independent(
             let start = chunk * CHUNK_SIZE;
             let n = (CHUNK_SIZE.min(samples - start)) as usize;
             first_non_finite_of_chunk(prepared, scene, start, n, |visit| {
-                independent_points(prepared, seed, chunk, n, visit)
+                independent_points(prepared, seed, start, n, visit)
             })
         })
         .unwrap_or(NON_FINITE_NOT_FOUND)

@@ -13,7 +13,7 @@
 use glam::{DVec2, DVec3};
 use lambert_estimator::chunk::{
     independent_chunk, independent_chunk_f32, sequence_chunk, sequence_chunk_f32, ChunkResult,
-    BLOCK,
+    ChunkStream, BLOCK,
 };
 use lambert_estimator::estimation::{estimate, prepare, prepare_f32, EstimateConfig, SequenceKind};
 use lambert_estimator::precision::Precision;
@@ -50,17 +50,49 @@ fn reference_value(p: &PreparedEmitter, receiver: &Receiver, u: DVec2, u2: DVec2
     p.evaluate_u(receiver, u, u2)
 }
 
-/// The chunk as the estimator computed it before blocks, lanes and
-/// instruction sets: the whole chunk's points from `rand_pcg`, one
-/// emitter after the other, one sample at a time.
+/// SplitMix64 as its authors step it, one output after the other
+/// (Steele, Lea & Flood 2014): the state moves by γ, the output is the
+/// state's Mix13 finaliser. Written out here, apart from the library's
+/// lanes, so that the reference shares no code with the chunk paths.
+struct SerialSplitMix64(u64);
+
+impl SerialSplitMix64 {
+    const GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
+
+    fn mix(mut z: u64) -> u64 {
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// The run stream of `seed`: state mix(seed) before output 0.
+    fn of_run(seed: u64) -> Self {
+        SerialSplitMix64(Self::mix(seed))
+    }
+
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(Self::GAMMA);
+        Self::mix(self.0)
+    }
+}
+
+/// The window of the run stream of `seed` that the chunk of samples from
+/// 0 reads, for `prepared`'s dimensions.
+fn first_chunk(prepared: &[PreparedEmitter], seed: u64) -> ChunkStream {
+    let dims: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
+    ChunkStream::new(seed, dims as u64, 0)
+}
+
+/// The first chunk of a run as the estimator computes it without blocks,
+/// lanes or instruction sets: the whole chunk's points from the serial
+/// generator, one emitter after the other, one sample at a time.
 fn reference_independent(
     prepared: &[PreparedEmitter],
     receiver: &Receiver,
     seed: u64,
     n: usize,
 ) -> (Estimate, Vec<u64>) {
-    use rand_core::{RngCore, SeedableRng};
-    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(seed);
+    let mut rng = SerialSplitMix64::of_run(seed);
     let mut values = vec![0.0; n];
     let (mut u, mut u2) = (vec![DVec2::ZERO; n], vec![DVec2::ZERO; n]);
     let scale = 1.0 / (1u64 << 32) as f64;
@@ -132,7 +164,8 @@ fn blocks_lanes_and_instruction_sets_keep_every_bit() {
             for (seed, n) in [(3u64, 4096usize), (17, 1000)] {
                 let (want, nonzero) = reference_independent(&prepared, &receiver, seed, n);
                 for isa in Isa::available() {
-                    let got = independent_chunk(&prepared, &receiver, seed, n, isa);
+                    let stream = first_chunk(&prepared, seed);
+                    let got = independent_chunk(&prepared, &receiver, stream, n, isa);
                     assert_eq!(got.estimate, want, "{} {strategy} {isa}", named.name);
                     // A sphere's light sampling counts its non-zero
                     // values, with or without the clamp (a cone above
@@ -218,9 +251,16 @@ fn leave_garbage(len: usize, overflow: bool, f32_chunk: bool) -> u64 {
     let isa = Isa::selected();
     let result = if f32_chunk {
         let (f32s, _) = prepare_f32(&scene, &prepared);
-        independent_chunk_f32(&prepared, &f32s, &receiver, 1, len, isa)
+        independent_chunk_f32(
+            &prepared,
+            &f32s,
+            &receiver,
+            first_chunk(&prepared, 1),
+            len,
+            isa,
+        )
     } else {
-        independent_chunk(&prepared, &receiver, 1, len, isa)
+        independent_chunk(&prepared, &receiver, first_chunk(&prepared, 1), len, isa)
     };
     result.estimate.non_finite()
 }
@@ -266,7 +306,7 @@ fn overwriting_first_emitter_ignores_what_the_buffer_held() {
             let (prepared, _) = prepare(scene, strategy);
             for isa in Isa::available() {
                 let runs: [&(dyn Fn() -> ChunkResult + Sync); 2] = [
-                    &|| independent_chunk(&prepared, receiver, 7, n, isa),
+                    &|| independent_chunk(&prepared, receiver, first_chunk(&prepared, 7), n, isa),
                     &|| sequence_chunk(&prepared, receiver, &sobol, 64..64 + n as u64, isa),
                 ];
                 let case = format!("{} {strategy} {isa}", named.name);
@@ -304,7 +344,10 @@ fn overwriting_first_emitter_ignores_what_the_f32_buffer_held() {
             let (f32s, _) = prepare_f32(scene, &prepared);
             let sobol = Sobol::new(7);
             let runs: [&(dyn Fn() -> ChunkResult + Sync); 2] = [
-                &|| independent_chunk_f32(&prepared, &f32s, &scene.receiver, 7, n, isa),
+                &|| {
+                    let stream = first_chunk(&prepared, 7);
+                    independent_chunk_f32(&prepared, &f32s, &scene.receiver, stream, n, isa)
+                },
                 &|| {
                     let range = 64..64 + n as u64;
                     sequence_chunk_f32(&prepared, &f32s, &scene.receiver, &sobol, range, isa)

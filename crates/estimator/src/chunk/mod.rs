@@ -1,15 +1,14 @@
 //! One chunk of an estimate, computed in cache-sized blocks inside the
 //! instruction set the process selected.
 //!
-//! A chunk's values are what they have always been (the pinned-value tests
-//! check it): the independent path reads the chunk's `Pcg64Mcg` stream in
-//! the same order, emitter by emitter (each emitter's n first coordinates,
-//! then for MIS its n light coordinates), and the randomized-QMC path reads
-//! request d of sample i from the sequence. What changed is how:
+//! The independent path reads the run's SplitMix64 stream ([`ChunkStream`])
+//! emitter by emitter (each emitter's n first coordinates, then for MIS its
+//! n light coordinates), and the randomized-QMC path reads request d of
+//! sample i from the sequence. How:
 //!
 //! - **Blocks.** The chunk is evaluated [`BLOCK`] samples at a time: the
-//!   stream jumps to each emitter's offset for the block
-//!   ([`McgStream::fill_2d`]), the coordinates land in arrays that stay
+//!   stream is read from each emitter's offset for the block
+//!   ([`SplitMix64::fill_2d`]), the coordinates land in arrays that stay
 //!   in the second-level cache, and [`PreparedEmitter::add_batch_in`] adds the
 //!   emitter's estimates to the block's values.
 //! - **No allocation per chunk.** Every buffer is the worker thread's own,
@@ -23,18 +22,20 @@
 //!   set ([`PreparedEmitter::add_batch_in`]) that every chunk loop calls
 //!   block by block, not a copy inlined into each loop.
 
-mod mcg;
 mod precision_f32;
+mod stream;
 
 use std::cell::RefCell;
 
 use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
 use lambert_sampling::sequence::SampleSequence;
+#[cfg(doc)]
+use lambert_sampling::sequence::SplitMix64;
 
 pub use lambert_sampling::sequence::round_down_24;
-pub use mcg::McgStream;
 pub use precision_f32::{independent_chunk_f32, sequence_chunk_f32};
+pub use stream::ChunkStream;
 
 use crate::statistics::Estimate;
 use crate::strategy::{PartHits, PreparedEmitter, Store};
@@ -43,9 +44,10 @@ use crate::strategy::{PartHits, PreparedEmitter, Store};
 /// ([`crate::estimation::CHUNK_SIZE`], 4096), whose coordinates (4 arrays
 /// of f64, 128 KB) and values stay in the second-level cache.
 ///
-/// Each block pays a fixed cost per emitter: the stream's jump to the
-/// emitter's offset (a 128-bit power by squaring, then sixteen lane
-/// states) and the kernel's set-up (its frame, its cone, its dispatch).
+/// Each block pays a fixed cost per emitter: the stream's lane states at
+/// the emitter's offset (before 2026-12-06, a 128-bit power by squaring,
+/// when the stream was `Pcg64Mcg`'s) and the kernel's set-up (its frame,
+/// its cone, its dispatch).
 /// Blocks of 512 that fit the first-level cache paid it eight times a
 /// chunk; measured against them (alternated runs, medians of 7, the same
 /// values and hits), whole-chunk blocks took 0.94× the time per sample
@@ -114,16 +116,15 @@ fn first_overwrites(k: usize) -> Store {
     }
 }
 
-/// One chunk of `n` independent samples from the `Pcg64Mcg` stream seeded
-/// with `chunk_seed` (module docs), run with instruction set `isa`.
+/// One chunk of `n` independent samples, whose numbers `stream` gives
+/// ([`ChunkStream`]), run with instruction set `isa`.
 pub fn independent_chunk(
     prepared: &[PreparedEmitter],
     receiver: &Receiver,
-    chunk_seed: u64,
+    stream: ChunkStream,
     n: usize,
     isa: Isa,
 ) -> ChunkResult {
-    let stream = McgStream::seed_from_u64(chunk_seed);
     with_scratch(n, prepared.len(), |s| {
         isa.run_without_gfni(
             #[inline(always)]

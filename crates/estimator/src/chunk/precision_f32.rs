@@ -2,15 +2,12 @@
 //!
 //! Its coordinates are 24-bit: u₃₂ = k·2⁻²⁴, exactly representable in
 //! f32 and never 1.
-//! - **Independent samples** come from the chunk's own SplitMix64 stream
-//!   ([`SplitMix64::from_state`] of the chunk's seed), whose outputs are
-//!   computed many lanes at a time with one 64-bit finaliser each, where
-//!   the f64 path's `Pcg64Mcg` stream costs a 128-bit multiply per output
-//!   ([`super::mcg`]): the generator is part of the per-sample cost the
-//!   f32 path exists to cut. Emitter by emitter, point `offset + i` of
-//!   the stream's grouped f32 layout ([`SplitMix64::fill_2d_f32`]) is
-//!   sample i's point (MIS's second point `n` points later), with the
-//!   chunk's instruction set ([`SplitMix64::fill_2d_f32_in`]).
+//! - **Independent samples** come from the chunk's window of the run's
+//!   SplitMix64 stream ([`ChunkStream`]), as in f64: emitter by emitter,
+//!   point `offset + i` of the stream's grouped f32 layout
+//!   ([`SplitMix64::fill_2d_f32`]) is sample i's point (MIS's second point
+//!   `n` points later), with the chunk's instruction set
+//!   ([`ChunkStream::fill_2d_f32_in`]).
 //! - **Randomized-QMC sequences** give their f32 points
 //!   ([`SampleSequence::fill_2d_split_f32`]): Sobol's are the f64 chunk's
 //!   points rounded down to 24 bits, ⌊2²⁴u⌋/2²⁴
@@ -22,7 +19,7 @@
 //!   `lambert_sampling::sequence::Stratified`).
 //!
 //! An emitter that runs in f64 ([`crate::strategy::F32Fallback`]) gets the
-//! f64 chunk's coordinates (the `Pcg64Mcg` stream, or the sequence's
+//! f64 chunk's coordinates (the stream's f64 points, or the sequence's
 //! points) and the f64 kernel, so its part of the estimate is what an f64
 //! estimate computes. The values are accumulated in f64 and
 //! summarised as in f64 ([`Estimate::from_values`]), so the result does
@@ -34,9 +31,11 @@ use std::cell::RefCell;
 
 use lambert_light::receiver::Receiver;
 use lambert_sampling::isa::Isa;
-use lambert_sampling::sequence::{SampleSequence, SplitMix64};
+use lambert_sampling::sequence::SampleSequence;
+#[cfg(doc)]
+use lambert_sampling::sequence::SplitMix64;
 
-use super::{ChunkResult, McgStream, BLOCK};
+use super::{ChunkResult, ChunkStream, BLOCK};
 use crate::statistics::Estimate;
 use crate::strategy::{PreparedEmitter, PreparedEmitterF32, Store};
 
@@ -151,10 +150,9 @@ fn block<C: Coordinates>(
 }
 
 /// One emitter's block of the independent stream: its request r of
-/// samples `first..` starts at output `first + r·n`.
+/// samples `first..` starts at point `first + r·n` of the chunk's window.
 struct StreamBlock<'a> {
-    stream: &'a McgStream,
-    stream32: &'a SplitMix64,
+    stream: &'a ChunkStream,
     first: u64,
     n: u64,
     /// The set the chunk runs in, which the f32 fill's body follows.
@@ -170,25 +168,23 @@ impl Coordinates for StreamBlock<'_> {
     }
     #[inline(always)]
     fn f32s<'a>(&'a self, request: usize, x: &'a mut [f32], y: &'a mut [f32]) -> [&'a [f32]; 2] {
-        self.stream32
+        self.stream
             .fill_2d_f32_in(self.isa, self.first + request as u64 * self.n, x, y);
         [x, y]
     }
 }
 
-/// [`super::independent_chunk`] in f32 (module docs): each f32 emitter's
-/// coordinates from the chunk's SplitMix64 stream, each f64 emitter's
-/// from its `Pcg64Mcg` stream, both seeded with `chunk_seed`.
+/// [`super::independent_chunk`] in f32 (module docs): every emitter's
+/// coordinates from the chunk's window `stream`, in f32 for the emitters
+/// that run in f32 and in f64 for the others.
 pub fn independent_chunk_f32(
     prepared: &[PreparedEmitter],
     f32s: &[Option<PreparedEmitterF32>],
     receiver: &Receiver,
-    chunk_seed: u64,
+    stream: ChunkStream,
     n: usize,
     isa: Isa,
 ) -> ChunkResult {
-    let stream = McgStream::seed_from_u64(chunk_seed);
-    let stream32 = SplitMix64::from_state(chunk_seed);
     // Emitter k's first output: the dimensions of the emitters before it.
     let offsets: Vec<u64> = prepared
         .iter()
@@ -208,7 +204,6 @@ pub fn independent_chunk_f32(
                     let m = BLOCK.min(n - start);
                     let coords = |k: usize| StreamBlock {
                         stream: &stream,
-                        stream32: &stream32,
                         first: offsets[k] + start as u64,
                         n: n as u64,
                         isa,

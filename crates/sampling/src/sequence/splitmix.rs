@@ -17,9 +17,10 @@
 //! fills its lanes independently (two 64-bit multiplies and a few shifts
 //! per number, which AVX-512 does eight at a time), where a generator whose
 //! next state needs the last one (PCG's 128-bit multiply) costs a multiply
-//! latency per number. That is what the f32 estimator path and the batch
-//! benches use it for; the f64 estimator keeps its PCG stream, whose
-//! values it has always had.
+//! latency per number, and PCG-XSL-RR 128/64, even stepped in lanes,
+//! ten 32-bit multiplies per output where a vector set has no 64-bit one.
+//! That is what the independent estimator (both precisions) and the batch
+//! benches use it for.
 //!
 //! Each 64-bit output gives two coordinates, its two 32-bit halves scaled
 //! to [0, 1). In f64 ([`SplitMix64::fill_2d`]) output i is point i: x from
@@ -350,28 +351,60 @@ impl SplitMix64 {
     }
 
     /// [`fill_2d_f32`](Self::fill_2d_f32) in f64: the two 32-bit halves of
-    /// output `first + k`, times 2⁻³² (in [0, 1 − 2⁻³²]).
+    /// output `first + k`, times 2⁻³² (in [0, 1 − 2⁻³²]): x from the high
+    /// half, y from the low. Fills the shorter length.
+    ///
+    /// The outputs are computed sixteen at a time, each lane's state
+    /// stepped by 16γ, so that the compiler keeps the states in vector
+    /// registers (a state stepped by γ after every output is one serial
+    /// chain), and each half becomes its coordinate by an exponent trick
+    /// instead of a conversion (h·2⁻³² = (1 + h·2⁻³²) − 1, the first
+    /// term's bits written directly; exact). On an AVX2 host, 1.12 ns a
+    /// point against 1.25 with the state stepped by γ (4096 points,
+    /// medians of 9).
     #[inline(always)]
     pub fn fill_2d(&self, first: u64, x: &mut [f64], y: &mut [f64]) {
-        const SCALE: f64 = 1.0 / 4_294_967_296.0;
-        let mut state = self.state_before(first);
-        for (xk, yk) in x.iter_mut().zip(y.iter_mut()) {
+        let len = x.len().min(y.len());
+        let (x, y) = (&mut x[..len], &mut y[..len]);
+        let whole = len / LANES * LANES;
+        let mut states = [0u64; LANES];
+        for (j, s) in states.iter_mut().enumerate() {
+            *s = self.state_before(first.wrapping_add(j as u64));
+        }
+        let step = (LANES as u64).wrapping_mul(GAMMA);
+        let (xs, _) = x[..whole].as_chunks_mut::<LANES>();
+        let (ys, _) = y[..whole].as_chunks_mut::<LANES>();
+        for (xg, yg) in xs.iter_mut().zip(ys) {
+            for j in 0..LANES {
+                let bits = mix64(states[j]);
+                states[j] = states[j].wrapping_add(step);
+                (xg[j], yg[j]) = (half_to_f64(bits >> 32), half_to_f64(bits & 0xffff_ffff));
+            }
+        }
+        let mut state = self.state_before(first.wrapping_add(whole as u64));
+        for (xk, yk) in x[whole..].iter_mut().zip(&mut y[whole..]) {
             let bits = mix64(state);
             state = state.wrapping_add(GAMMA);
-            *xk = u32_to_f64_exact(bits >> 32) * SCALE;
-            *yk = u32_to_f64_exact(bits & 0xffff_ffff) * SCALE;
+            (*xk, *yk) = (half_to_f64(bits >> 32), half_to_f64(bits & 0xffff_ffff));
         }
     }
 }
 
-/// `x < 2³²` as an f64, exactly: the bits of 2⁵² + x minus 2⁵². One
-/// integer or and one subtraction, where a 64-bit integer conversion has
-/// no vector instruction before AVX-512.
+/// Outputs computed side by side by [`SplitMix64::fill_2d`]: two AVX-512
+/// vectors, four AVX2 ones (8 and 32 measured slower on the AVX2 host:
+/// 1.31 and 1.13 ns a point against 1.12).
+const LANES: usize = 16;
+
+/// A 32-bit half h (`h < 2³²`) as h·2⁻³², exactly, without a conversion
+/// or a multiply: the double with exponent 0 and fraction bits h·2²⁰ is
+/// 1 + h·2⁻³² exactly (h fits the 52 fraction bits), and subtracting 1 is
+/// exact (Sterbenz). A shift, an or and a subtraction, where a 64-bit
+/// integer conversion has no vector instruction before AVX-512.
 #[inline(always)]
-pub(crate) fn u32_to_f64_exact(x: u64) -> f64 {
-    const TWO_52: f64 = 4_503_599_627_370_496.0;
-    debug_assert!(x < 1 << 32);
-    f64::from_bits(TWO_52.to_bits() | x) - TWO_52
+fn half_to_f64(h: u64) -> f64 {
+    const ONE: u64 = 0x3ff0_0000_0000_0000;
+    debug_assert!(h < 1 << 32);
+    f64::from_bits(ONE | (h << 20)) - 1.0
 }
 
 #[cfg(test)]
@@ -468,10 +501,43 @@ mod tests {
         assert_eq!(rng.at(2), 0x06c4_5d18_8009_454f);
     }
 
+    /// The exponent trick gives h·2⁻³² to the bit (so +0 for h = 0) at
+    /// the half's extremes and around every power of two; a negative
+    /// control shows the comparison sees an ulp.
     #[test]
-    fn exact_conversion_of_32_bit_words() {
-        for x in [0u64, 1, 12345, (1 << 31) + 7, (1 << 32) - 1] {
-            assert_eq!(u32_to_f64_exact(x), x as f64);
+    fn a_half_is_its_value_times_two_to_the_minus_32_exactly() {
+        let mut halves = vec![0u64, 1, (1 << 32) - 1];
+        for e in 1..32 {
+            halves.extend([(1u64 << e) - 1, 1 << e, (1 << e) + 1]);
+        }
+        for h in halves {
+            let want = h as f64 / 4_294_967_296.0;
+            assert_eq!(half_to_f64(h).to_bits(), want.to_bits(), "half {h:#x}");
+        }
+        let off_by_an_ulp = f64::from_bits((0.5f64).to_bits() + 1);
+        assert_ne!(half_to_f64(1 << 31), off_by_an_ulp);
+    }
+
+    /// The f64 fill gives output `first + k`'s halves (high to x, low to
+    /// y) from any offset and for any length: lengths below, at and past
+    /// a multiple of the lanes, offsets that cross the index wrap. Its
+    /// values are the serial generator's, so the lanes never reorder them.
+    #[test]
+    fn the_f64_fill_gives_each_output_its_halves() {
+        for state in [0u64, 0xdead_beef] {
+            let stream = SplitMix64::from_state(state);
+            for first in [0u64, 1, 15, 16, 1000, u64::MAX - 20] {
+                for len in [0usize, 1, 15, 16, 17, 100, 4096] {
+                    let (mut x, mut y) = (vec![0.0; len], vec![0.0; len]);
+                    stream.fill_2d(first, &mut x, &mut y);
+                    for k in 0..len {
+                        let bits = stream.at(first.wrapping_add(k as u64));
+                        let half = |h: u64| h as f64 / 4_294_967_296.0;
+                        assert_eq!(x[k], half(bits >> 32), "{state} {first}+{k}");
+                        assert_eq!(y[k], half(bits & 0xffff_ffff), "{state} {first}+{k}");
+                    }
+                }
+            }
         }
     }
 
