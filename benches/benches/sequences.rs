@@ -122,36 +122,34 @@ fn chunk_stream(c: &mut Criterion) {
     let mut g = c.benchmark_group("sequences");
     g.throughput(Throughput::Elements(CHUNK as u64));
     let stream = ChunkStream::new(1, 1, 0);
+    // One fill per block, as the chunk loop calls it, in either precision.
+    macro_rules! blocks {
+        ($isa:expr, |$first:ident, $x:ident, $y:ident| $fill:expr) => {
+            |first: u64, x: &mut [_], y: &mut [_]| {
+                $isa.run(
+                    #[inline(always)]
+                    || {
+                        for (k, ($x, $y)) in
+                            x.chunks_mut(BLOCK).zip(y.chunks_mut(BLOCK)).enumerate()
+                        {
+                            let $first = first + (k * BLOCK) as u64;
+                            $fill;
+                        }
+                    },
+                )
+            }
+        };
+    }
     for isa in Isa::available() {
         bench_split::<f64>(
             &mut g,
             format!("chunk stream {isa}"),
-            |first: u64, x: &mut [f64], y: &mut [f64]| {
-                isa.run(
-                    #[inline(always)]
-                    || {
-                        for (k, (x, y)) in x.chunks_mut(BLOCK).zip(y.chunks_mut(BLOCK)).enumerate()
-                        {
-                            stream.fill_2d(first + (k * BLOCK) as u64, x, y);
-                        }
-                    },
-                )
-            },
+            blocks!(isa, |at, x, y| stream.fill_2d(at, x, y)),
         );
         bench_split::<f32>(
             &mut g,
             format!("chunk stream f32 {isa}"),
-            |first: u64, x: &mut [f32], y: &mut [f32]| {
-                isa.run(
-                    #[inline(always)]
-                    || {
-                        for (k, (x, y)) in x.chunks_mut(BLOCK).zip(y.chunks_mut(BLOCK)).enumerate()
-                        {
-                            stream.fill_2d_f32_in(isa, first + (k * BLOCK) as u64, x, y);
-                        }
-                    },
-                )
-            },
+            blocks!(isa, |at, x, y| stream.fill_2d_f32_in(isa, at, x, y)),
         );
     }
     g.finish();

@@ -252,8 +252,7 @@ impl SplitMix64 {
 
     /// The stream whose state before output 0 is `state` itself, without
     /// [`SplitMix64::new`]'s scrambling: output k is
-    /// `mix64(state + (k + 1)·γ)`, SplitMix64 as its authors seed it (the
-    /// f32 estimator's chunk streams start from their chunk seeds so).
+    /// `mix64(state + (k + 1)·γ)`, SplitMix64 as its authors seed it.
     pub fn from_state(state: u64) -> Self {
         SplitMix64 { state }
     }
