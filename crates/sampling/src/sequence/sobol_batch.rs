@@ -372,6 +372,46 @@ const PASCAL_NIBBLES: [[u8; 16]; 2] = {
     tables
 };
 
+/// The loop of [`pascal_avx512`] and [`pascal_avx2`] over the whole
+/// vectors of `j` (the first `$whole`), `$lanes` indices to a `$vector`:
+/// the in-byte block `M` by two `vpshufb` lookups, then the butterflies
+/// between bytes and between 16-bit halves. `$ops` and `$shuffles` are the
+/// pulp handles whose methods, named by the remaining arguments, do the
+/// bitwise operations and the byte shuffle. No closures in here (see
+/// `splitmix::fill_groups_avx2`).
+macro_rules! pascal_vectors {
+    (
+        $j:ident, $y:ident, $whole:ident, $lanes:literal, $vector:ty, $ops:ident, $shuffles:ident,
+        $and:ident, $andnot:ident, $or:ident, $xor:ident, $srli:ident, $slli:ident,
+        $shuffle:ident
+    ) => {{
+        let low: $vector = pulp::cast([PASCAL_NIBBLES[0]; $lanes / 4]);
+        let high: $vector = pulp::cast([PASCAL_NIBBLES[1]; $lanes / 4]);
+        let nibble: $vector = pulp::cast([0x0f0f_0f0fu32; $lanes]);
+        let even_bytes: $vector = pulp::cast([0x00ff_00ffu32; $lanes]);
+        let even_halves: $vector = pulp::cast([0x0000_ffffu32; $lanes]);
+        let (js, _) = $j[..$whole].as_chunks::<$lanes>();
+        let (ys, _) = $y[..$whole].as_chunks_mut::<$lanes>();
+        for (jv, yv) in js.iter().zip(ys) {
+            let j: $vector = pulp::cast(*jv);
+            let lo = $ops.$and(j, nibble);
+            let hi = $ops.$and($ops.$srli::<4>(j), nibble);
+            let v = $ops.$xor($shuffles.$shuffle(low, lo), $shuffles.$shuffle(high, hi));
+            // (y_lo, y_hi) ← (y_lo ⊕ y_hi, y_lo) between bytes, then
+            // between 16-bit halves.
+            let v = $ops.$or(
+                $ops.$and($ops.$xor(v, $ops.$srli::<8>(v)), even_bytes),
+                $ops.$andnot(even_bytes, $ops.$slli::<8>(v)),
+            );
+            let v = $ops.$or(
+                $ops.$and($ops.$xor(v, $ops.$srli::<16>(v)), even_halves),
+                $ops.$andnot(even_halves, $ops.$slli::<16>(v)),
+            );
+            *yv = pulp::cast(v);
+        }
+    }};
+}
+
 /// [`pascal_reversed`] of the whole vectors of `j`, sixteen to an AVX-512
 /// register, when the process's set ([`Isa::selected`]) is one of the
 /// AVX-512 ones; returns how many it computed (the caller does the rest
@@ -398,42 +438,62 @@ fn pascal_avx512(j: &[u32], y: &mut [u32]) -> usize {
                 || {
                     use core::arch::x86_64::__m512i;
                     let (f, bw) = (simd.avx512f, simd.avx512bw);
-                    // No closures in here (see `splitmix::fill_groups_avx2`).
-                    let low: __m512i = pulp::cast([PASCAL_NIBBLES[0]; 4]);
-                    let high: __m512i = pulp::cast([PASCAL_NIBBLES[1]; 4]);
-                    let nibble = f._mm512_set1_epi32(0x0f0f_0f0f);
-                    let (even_bytes, even_halves) = (
-                        f._mm512_set1_epi32(0x00ff_00ff),
-                        f._mm512_set1_epi32(0x0000_ffff),
+                    pascal_vectors!(
+                        j,
+                        y,
+                        whole,
+                        16,
+                        __m512i,
+                        f,
+                        bw,
+                        _mm512_and_si512,
+                        _mm512_andnot_si512,
+                        _mm512_or_si512,
+                        _mm512_xor_si512,
+                        _mm512_srli_epi32,
+                        _mm512_slli_epi32,
+                        _mm512_shuffle_epi8
                     );
-                    let (js, _) = j[..whole].as_chunks::<16>();
-                    let (ys, _) = y[..whole].as_chunks_mut::<16>();
-                    for (jv, yv) in js.iter().zip(ys) {
-                        let j: __m512i = pulp::cast(*jv);
-                        let lo = f._mm512_and_si512(j, nibble);
-                        let hi = f._mm512_and_si512(f._mm512_srli_epi32::<4>(j), nibble);
-                        let v = f._mm512_xor_si512(
-                            bw._mm512_shuffle_epi8(low, lo),
-                            bw._mm512_shuffle_epi8(high, hi),
-                        );
-                        // (y_lo, y_hi) ← (y_lo ⊕ y_hi, y_lo) between bytes,
-                        // then between 16-bit halves.
-                        let v = f._mm512_or_si512(
-                            f._mm512_and_si512(
-                                f._mm512_xor_si512(v, f._mm512_srli_epi32::<8>(v)),
-                                even_bytes,
-                            ),
-                            f._mm512_andnot_si512(even_bytes, f._mm512_slli_epi32::<8>(v)),
-                        );
-                        let v = f._mm512_or_si512(
-                            f._mm512_and_si512(
-                                f._mm512_xor_si512(v, f._mm512_srli_epi32::<16>(v)),
-                                even_halves,
-                            ),
-                            f._mm512_andnot_si512(even_halves, f._mm512_slli_epi32::<16>(v)),
-                        );
-                        *yv = pulp::cast(v);
-                    }
+                },
+            );
+            return whole;
+        }
+    }
+    let _ = (j, y);
+    0
+}
+
+/// [`pascal_reversed`] of the whole vectors of `j`, eight to an AVX2
+/// register, when the process's set ([`Isa::selected`]) is AVX2; returns
+/// how many it computed. The method of [`pascal_avx512`] (lookups of the
+/// in-byte block, butterflies between bytes), in 256-bit registers.
+#[inline(always)]
+fn pascal_avx2(j: &[u32], y: &mut [u32]) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if crate::isa::Isa::selected() == crate::isa::Isa::Avx2Fma {
+        if let Some(simd) = pulp::x86::V3::try_new() {
+            let whole = j.len().min(y.len()) / 8 * 8;
+            simd.vectorize(
+                #[inline(always)]
+                || {
+                    use core::arch::x86_64::__m256i;
+                    let a2 = simd.avx2;
+                    pascal_vectors!(
+                        j,
+                        y,
+                        whole,
+                        8,
+                        __m256i,
+                        a2,
+                        a2,
+                        _mm256_and_si256,
+                        _mm256_andnot_si256,
+                        _mm256_or_si256,
+                        _mm256_xor_si256,
+                        _mm256_srli_epi32,
+                        _mm256_slli_epi32,
+                        _mm256_shuffle_epi8
+                    );
                 },
             );
             return whole;
@@ -462,7 +522,10 @@ impl ReversedMatrix {
                 }
             }
             ReversedMatrix::Pascal => {
-                let done = pascal_avx512(j, y);
+                let mut done = pascal_avx512(j, y);
+                if done == 0 {
+                    done = pascal_avx2(j, y);
+                }
                 for (y, &j) in y[done..].iter_mut().zip(&j[done..]) {
                     *y = pascal_reversed(j);
                 }
@@ -690,7 +753,7 @@ mod tests {
     }
 
     /// The vector form of the Pascal transform (byte lookups and two byte
-    /// levels, where the process runs AVX-512) equals the scalar one on
+    /// levels, where the process runs AVX-512 or AVX2) equals the scalar one on
     /// arbitrary values and every basis vector, for lengths with and
     /// without a partial vector. Negative control: the in-byte block `M`
     /// alone, which the lookups give before the byte levels, differs.
