@@ -38,6 +38,7 @@ use lambert_sampling::isa::Isa;
 use super::batch::MAX_SPHERICAL_FAN;
 use super::cone_mis::ConeMisF32;
 use super::cone_window::CosineWindowF32;
+use super::listing::{gather, list_set_bits};
 use super::prepared_f32::{Area, Light, PreparedEmitterF32, Projected, Shape};
 use super::{Heuristic, PartHits, Store, Technique};
 
@@ -512,17 +513,9 @@ fn cone_mis_batch(
                 light_hits
             };
             // Pass 2.
-            let mut count = 0;
             let mut masks = [0u16; SPAN / MIS_GROUP];
             let groups = window.group_masks(&ux[..whole], &uy[..whole], &mut masks);
-            for (group, &mask) in masks[..groups].iter().enumerate() {
-                let mut mask = u32::from(mask);
-                while mask != 0 {
-                    listed[count] = (group * MIS_GROUP + mask.trailing_zeros() as usize) as u16;
-                    count += 1;
-                    mask &= mask - 1;
-                }
-            }
+            let mut count = list_set_bits(&masks[..groups], MIS_GROUP, &mut listed, 0);
             for k in whole..len {
                 listed[count] = k as u16;
                 count += usize::from(window.may_see(Vec2::new(ux[k], uy[k])));
@@ -530,9 +523,7 @@ fn cone_mis_batch(
             // Pass 3: whole groups, the last one padded with the previous
             // span's (or zero) coordinates, whose values are not used.
             let [gux, guy, cosines] = &mut gathered;
-            for (i, &k) in listed[..count].iter().enumerate() {
-                (gux[i], guy[i]) = (ux[usize::from(k)], uy[usize::from(k)]);
-            }
+            gather(&listed[..count], ux, uy, gux, guy);
             let padded = count.div_ceil(MIS_GROUP) * MIS_GROUP;
             let (cosine_groups, _) = cosines[..padded].as_chunks_mut::<MIS_GROUP>();
             let coordinates = lanes(gux, padded).iter().zip(lanes(guy, padded));

@@ -24,11 +24,11 @@
 //! [`Heuristic::weighted`] calls, as the general MIS path computes them.
 //! Neither direction is rotated into the world, nor is a density evaluated by
 //! a test against the emitter. And because a cosine-sampled direction that
-//! misses the emitter contributes exactly 0 and nothing else, the f64 batch
-//! kernel skips the cosine half's warp for a whole vector of samples that
-//! [`CosineWindow`] shows cannot see the cone (when the emitter is small,
-//! most of them). The f32 kernel does the same for vectors of sixteen
-//! samples, with a window built for f32 ([`CosineWindowF32`]).
+//! misses the emitter contributes exactly 0 and nothing else, the batch
+//! kernels compute the cosine half's warp only for the samples that
+//! [`CosineWindow`] shows may see the cone (when the emitter is small, a
+//! few per cent of them), listed and gathered into whole vectors; the f32
+//! kernel with a window built for f32 ([`CosineWindowF32`]).
 //!
 //! **Values before 2026-12:** the light half drew ω′ with its azimuth
 //! measured from the cone frame's x axis, and took n′·ω′. The f64 halves
@@ -218,8 +218,8 @@ macro_rules! cone_mis {
 
 impl ConeMis {
     /// Which cosine-sampled directions may see the cone, decided before
-    /// their warp: the f64 kernel skips the cosine half of a vector of
-    /// samples none of which may (module docs). Built apart from the cone,
+    /// their warp: the f64 kernel computes the cosine half of those only
+    /// (module docs). Built apart from the cone,
     /// once per prepared emitter: it costs inverse sines and tangents.
     pub(super) fn window(&self) -> CosineWindow {
         CosineWindow::new(self.axis, self.rim)

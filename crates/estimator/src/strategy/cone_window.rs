@@ -1,7 +1,8 @@
 //! Which cosine-hemisphere samples may see a cone, decided from the unit
 //! square before the warp: a conservative test that lets cone MIS skip the
 //! cosine half's warp (a division, two sine polynomials, a square root)
-//! for whole vectors of samples that all miss.
+//! for every sample that misses, computing it only for the samples the
+//! test lists.
 //!
 //! The cosine-hemisphere warp (Shirley & Chiu 1997's concentric map, then
 //! z = √(1 − r²)) sends `u` to the direction of polar angle asin r and

@@ -59,6 +59,7 @@ mod emitter_area;
 mod emitter_light;
 mod emitter_projected;
 mod fallback;
+mod listing;
 mod occluded;
 mod prepared;
 mod prepared_f32;
