@@ -1145,32 +1145,86 @@ fn first_pair_runs<T>(
         if tables.is_none() {
             run = run.min(BLOCK);
         }
-        let (xs, ys) = (&mut x[done..done + run], &mut y[done..done + run]);
-        let points = xs.iter_mut().zip(ys.iter_mut());
-        let point = |q: usize, [kx, ky]: [u32; 2]| {
-            let i = i0 + q as u32;
-            [
-                store((kx, jitter_hash(jitter_x, i))),
-                store((ky, jitter_hash(jitter_y, i))),
-            ]
-        };
-        match tables {
-            Some((shifts, spreads)) => {
-                let rows = r0 as usize..r0 as usize + run;
-                let rows = shifts[rows.clone()].iter().zip(&spreads[rows]);
-                for (q, ((x, y), (&t, &spread_r))) in points.zip(rows).enumerate() {
-                    let r = r0 + q as u32;
-                    [*x, *y] = point(q, column.strata(grid, r, t, spread_r));
+        if core::mem::size_of::<T>() <= 4 {
+            // f32 coordinates: one loop, whose vectors hold as many lanes
+            // as the 32-bit work's (staged as below, an f32 first-pair
+            // point took 1.28 ns against 0.99 on an AVX2 host).
+            let (xs, ys) = (&mut x[done..done + run], &mut y[done..done + run]);
+            let points = xs.iter_mut().zip(ys.iter_mut());
+            let point = |q: usize, [kx, ky]: [u32; 2]| {
+                let i = i0 + q as u32;
+                [
+                    store((kx, jitter_hash(jitter_x, i))),
+                    store((ky, jitter_hash(jitter_y, i))),
+                ]
+            };
+            match tables {
+                Some((shifts, spreads)) => {
+                    let rows = r0 as usize..r0 as usize + run;
+                    let rows = shifts[rows.clone()].iter().zip(&spreads[rows]);
+                    for (q, ((x, y), (&t, &spread_r))) in points.zip(rows).enumerate() {
+                        let r = r0 + q as u32;
+                        [*x, *y] = point(q, column.strata(grid, r, t, spread_r));
+                    }
+                }
+                None => {
+                    let spread_r0 = grid.row_spread.get(r0);
+                    for (q, ((x, y), &step)) in points.zip(&grid.row_steps[..run]).enumerate() {
+                        let r = r0 + q as u32;
+                        let t = reduce(hash_u32(keys.tau, r), nx);
+                        let spread_r = rotate(spread_r0, step, ny);
+                        [*x, *y] = point(q, column.strata(grid, r, t, spread_r));
+                    }
                 }
             }
-            None => {
-                let spread_r0 = grid.row_spread.get(r0);
-                for (q, ((x, y), &step)) in points.zip(&grid.row_steps[..run]).enumerate() {
-                    let r = r0 + q as u32;
-                    let t = reduce(hash_u32(keys.tau, r), nx);
-                    let spread_r = rotate(spread_r0, step, ny);
-                    [*x, *y] = point(q, column.strata(grid, r, t, spread_r));
+        } else {
+            // In stages of [`BLOCK`] points: the strata and jitter bits first,
+            // in 32-bit arrays, then the coordinates. In one loop the compiler
+            // ran the 32-bit work at the coordinates' width, four lanes to an
+            // AVX2 register in f64 (the power-of-two kernel's reason too).
+            let mut stage = 0;
+            while stage < run {
+                let m = BLOCK.min(run - stage);
+                let mut parts = [[0u32; BLOCK]; 4];
+                let [kx, ky, hx, hy] = &mut parts;
+                let (kx, ky) = (&mut kx[..m], &mut ky[..m]);
+                let r1 = r0 + stage as u32;
+                match tables {
+                    Some((shifts, spreads)) => {
+                        let rows = r1 as usize..r1 as usize + m;
+                        let rows = shifts[rows.clone()].iter().zip(&spreads[rows]);
+                        for (q, ((kx, ky), (&t, &spread_r))) in
+                            kx.iter_mut().zip(ky.iter_mut()).zip(rows).enumerate()
+                        {
+                            let r = r1 + q as u32;
+                            [*kx, *ky] = column.strata(grid, r, t, spread_r);
+                        }
+                    }
+                    None => {
+                        let spread_r0 = grid.row_spread.get(r0);
+                        let steps = &grid.row_steps[stage..stage + m];
+                        for (q, ((kx, ky), &step)) in
+                            kx.iter_mut().zip(ky.iter_mut()).zip(steps).enumerate()
+                        {
+                            let r = r1 + q as u32;
+                            let t = reduce(hash_u32(keys.tau, r), nx);
+                            let spread_r = rotate(spread_r0, step, ny);
+                            [*kx, *ky] = column.strata(grid, r, t, spread_r);
+                        }
+                    }
                 }
+                let i1 = i0 + stage as u32;
+                for (q, (hx, hy)) in hx[..m].iter_mut().zip(hy[..m].iter_mut()).enumerate() {
+                    let i = i1 + q as u32;
+                    (*hx, *hy) = (jitter_hash(jitter_x, i), jitter_hash(jitter_y, i));
+                }
+                let [kx, ky, hx, hy] = &parts;
+                let xs = x[done + stage..done + stage + m].iter_mut();
+                let ys = y[done + stage..done + stage + m].iter_mut();
+                for (q, (x, y)) in xs.zip(ys).enumerate() {
+                    (*x, *y) = (store((kx[q], hx[q])), store((ky[q], hy[q])));
+                }
+                stage += m;
             }
         }
         done += run;
