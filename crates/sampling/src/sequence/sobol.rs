@@ -59,8 +59,10 @@
 //! **Batches**: [`SampleSequence::fill_2d`] computes a dimension pair for
 //! many consecutive indices at once, in the bit-reversed domain where the
 //! scramble acts directly, with byte-wise tables of the generator matrices
-//! (built once per process) and, for dimension 1 (Pascal's matrix), a
-//! five-step butterfly (`sobol_batch.rs`); it is inlined into its caller, so
+//! (built once per process; read by nibbles from registers where the
+//! process runs AVX-512, and in byte planes, 32 indices at a time, where
+//! it runs AVX2) and, for dimension 1 (Pascal's matrix), a five-step
+//! butterfly (`sobol_batch.rs`); it is inlined into its caller, so
 //! it runs in the caller's vector instruction set. The values are the
 //! cursor's, to the bit.
 //!
