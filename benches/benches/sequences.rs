@@ -144,7 +144,7 @@ fn chunk_stream(c: &mut Criterion) {
         bench_split::<f64>(
             &mut g,
             format!("chunk stream {isa}"),
-            blocks!(isa, |at, x, y| stream.fill_2d(at, x, y)),
+            blocks!(isa, |at, x, y| stream.fill_2d_in(isa, at, x, y)),
         );
         bench_split::<f32>(
             &mut g,

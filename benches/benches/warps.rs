@@ -281,12 +281,12 @@ impl Fill for f64 {
     #[inline(always)]
     fn fill(
         rng: &lambert_sampling::sequence::SplitMix64,
-        _isa: lambert_sampling::isa::Isa,
+        isa: lambert_sampling::isa::Isa,
         first: u64,
         x: &mut [f64],
         y: &mut [f64],
     ) {
-        rng.fill_2d(first, x, y);
+        rng.fill_2d_in(isa, first, x, y);
     }
 }
 

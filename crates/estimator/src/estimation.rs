@@ -690,7 +690,7 @@ fn independent_points(
     let stream = chunk_stream(prepared, seed, start);
     let (mut x, mut y) = (vec![0.0; n], vec![0.0; n]);
     let mut points = |offset: u64, u: &mut [DVec2]| {
-        stream.fill_2d(offset, &mut x, &mut y);
+        stream.fill_2d_in(Isa::Baseline, offset, &mut x, &mut y);
         for (p, (&x, &y)) in u.iter_mut().zip(x.iter().zip(&y)) {
             *p = DVec2::new(x, y);
         }

@@ -136,10 +136,10 @@ pub fn independent_chunk(
                     let mut offset = 0u64;
                     for (k, (p, h)) in prepared.iter().zip(hits.iter_mut()).enumerate() {
                         let first = offset + start as u64;
-                        stream.fill_2d(first, &mut s.ux[..m], &mut s.uy[..m]);
+                        stream.fill_2d_in(isa, first, &mut s.ux[..m], &mut s.uy[..m]);
                         if p.technique.dimensions() > 1 {
                             let first = first + n as u64;
-                            stream.fill_2d(first, &mut s.vx[..m], &mut s.vy[..m]);
+                            stream.fill_2d_in(isa, first, &mut s.vx[..m], &mut s.vy[..m]);
                         }
                         let got = p.add_batch_in(
                             isa,

@@ -163,7 +163,7 @@ impl Coordinates for StreamBlock<'_> {
     #[inline(always)]
     fn f64s<'a>(&'a self, request: usize, x: &'a mut [f64], y: &'a mut [f64]) -> [&'a [f64]; 2] {
         self.stream
-            .fill_2d(self.first + request as u64 * self.n, x, y);
+            .fill_2d_in(self.isa, self.first + request as u64 * self.n, x, y);
         [x, y]
     }
     #[inline(always)]

@@ -32,17 +32,18 @@ use lambert_sampling::sequence::SplitMix64;
 /// stream by chunk offset rules that out. Both
 /// precisions now read it (the f32 path's grouped layout,
 /// [`SplitMix64::fill_2d_f32`]; the f64 path's point per output,
-/// [`SplitMix64::fill_2d`]), and every independent estimate took new
+/// [`SplitMix64::fill_2d_in`]), and every independent estimate took new
 /// values of the same distribution.
 ///
 /// ```
 /// use lambert_estimator::chunk::ChunkStream;
+/// use lambert_sampling::isa::Isa;
 /// // Two emitters of one dimension each: chunk 1 (samples 4096..) reads
 /// // outputs from 2·4096 on, after chunk 0's 8192.
 /// let (mut x, mut y) = ([0.0; 4], [0.0; 4]);
-/// ChunkStream::new(7, 2, 4096).fill_2d(0, &mut x, &mut y);
+/// ChunkStream::new(7, 2, 4096).fill_2d_in(Isa::selected(), 0, &mut x, &mut y);
 /// let (mut x0, mut y0) = ([0.0; 4], [0.0; 4]);
-/// ChunkStream::new(7, 2, 0).fill_2d(8192, &mut x0, &mut y0);
+/// ChunkStream::new(7, 2, 0).fill_2d_in(Isa::Baseline, 8192, &mut x0, &mut y0);
 /// assert_eq!((x, y), (x0, y0));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -64,12 +65,13 @@ impl ChunkStream {
         }
     }
 
-    /// Points `offset + k` of the chunk's window in f64
-    /// ([`SplitMix64::fill_2d`]: x and y the high and low halves of an
-    /// output, k·2⁻³²).
+    /// Points `offset + k` of the chunk's window in f64, with the
+    /// instruction set `isa` ([`SplitMix64::fill_2d_in`]: x and y the high
+    /// and low halves of an output, k·2⁻³²; the same bits with any set).
     #[inline(always)]
-    pub fn fill_2d(&self, offset: u64, x: &mut [f64], y: &mut [f64]) {
-        self.stream.fill_2d(self.first.wrapping_add(offset), x, y);
+    pub fn fill_2d_in(&self, isa: Isa, offset: u64, x: &mut [f64], y: &mut [f64]) {
+        self.stream
+            .fill_2d_in(isa, self.first.wrapping_add(offset), x, y);
     }
 
     /// Points `offset + k` of the chunk's window in f32, with the
@@ -98,9 +100,9 @@ mod tests {
         for start in [4096u64, 8192, 3 * 4096] {
             let chunk = ChunkStream::new(7, dims, start);
             let (mut x, mut y) = ([0.0; 20], [0.0; 20]);
-            chunk.fill_2d(0, &mut x, &mut y);
+            chunk.fill_2d_in(Isa::Baseline, 0, &mut x, &mut y);
             let (mut wx, mut wy) = ([0.0; 20], [0.0; 20]);
-            whole.fill_2d(start * dims, &mut wx, &mut wy);
+            whole.fill_2d_in(Isa::selected(), start * dims, &mut wx, &mut wy);
             assert_eq!((x, y), (wx, wy), "start {start}");
             let (mut fx, mut fy) = ([0.0f32; 32], [0.0f32; 32]);
             chunk.fill_2d_f32_in(Isa::Baseline, 16, &mut fx, &mut fy);
@@ -109,9 +111,9 @@ mod tests {
             assert_eq!((fx, fy), (wfx, wfy), "start {start}");
         }
         let (mut a, mut b) = ([0.0; 8], [0.0; 8]);
-        ChunkStream::new(8, dims, 0).fill_2d(0, &mut a, &mut b);
+        ChunkStream::new(8, dims, 0).fill_2d_in(Isa::Baseline, 0, &mut a, &mut b);
         let (mut c, mut d) = ([0.0; 8], [0.0; 8]);
-        whole.fill_2d(0, &mut c, &mut d);
+        whole.fill_2d_in(Isa::Baseline, 0, &mut c, &mut d);
         assert_ne!(a, c);
     }
 }

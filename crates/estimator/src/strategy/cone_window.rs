@@ -267,7 +267,7 @@ impl CosineWindowF32 {
                     simd.vectorize(
                         #[inline(always)]
                         || {
-                            // No closures in here (see `splitmix::fill_groups_avx2`
+                            // No closures in here (see `splitmix_avx2::fill_groups_f32`
                             // in lambert-sampling).
                             let f = simd.avx512f;
                             let (x0, x1) =

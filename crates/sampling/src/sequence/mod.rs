@@ -45,6 +45,7 @@ pub mod sobol;
 mod sobol_batch;
 mod sobol_table;
 mod splitmix;
+mod splitmix_avx2;
 pub mod stratified;
 mod stratified_batch;
 mod stratified_f32;
@@ -226,7 +227,7 @@ pub(crate) fn assert_split_lengths(method: &str, x: usize, y: usize) {
 }
 
 /// `2^-32`.
-const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
+pub(super) const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
 /// `2^-53`.
 const TWO_POW_M53: f64 = 1.0 / 9_007_199_254_740_992.0;
 /// `2^-24`.
@@ -277,6 +278,9 @@ pub fn round_down_24(x: f64) -> f32 {
 pub(crate) const MIX_1: u64 = 0xbf58_476d_1ce4_e5b9;
 /// The second multiplier of [`mix64`].
 pub(crate) const MIX_2: u64 = 0x94d0_49bb_1331_11eb;
+/// The golden-ratio increment γ = ⌊2⁶⁴/φ⌋ (odd) by which SplitMix64
+/// steps its state.
+pub(crate) const GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// The splitmix64 finaliser (Steele, Lea & Flood 2014; constants of
 /// Stafford's "Mix13"): a bijection of `u64` with full avalanche.
@@ -291,7 +295,6 @@ pub(crate) fn mix64(mut z: u64) -> u64 {
 /// of splitmix64. Distinct `(a, b)` give unrelated outputs.
 #[inline]
 pub(crate) fn hash2(a: u64, b: u64) -> u64 {
-    const GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
     mix64(a.wrapping_add(GAMMA.wrapping_mul(mix64(b.wrapping_add(GAMMA)) | 1)))
 }
 

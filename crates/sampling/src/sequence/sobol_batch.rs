@@ -168,7 +168,7 @@ fn nibble_products_avx512(nibbles: &[[u32; 16]; 8], j: &[u32], y: &mut [u32]) ->
                 || {
                     use core::arch::x86_64::__m512i;
                     let f = simd.avx512f;
-                    // No closures in here (see `splitmix::fill_groups_avx2`).
+                    // No closures in here (see `splitmix_avx2::fill_groups_f32`).
                     let t: [__m512i; 8] = pulp::cast(*nibbles);
                     let (js, _) = j[..whole].as_chunks::<16>();
                     let (ys, _) = y[..whole].as_chunks_mut::<16>();
@@ -250,7 +250,7 @@ fn byte_plane_products_avx2(planes: &BytePlaneTables, j: &[u32], y: &mut [u32]) 
                 || {
                     use core::arch::x86_64::__m256i;
                     let a2 = simd.avx2;
-                    // No closures in here (see `splitmix::fill_groups_avx2`).
+                    // No closures in here (see `splitmix_avx2::fill_groups_f32`).
                     // Byte m of word w to byte w of word m, in each 128-bit
                     // half: the byte transpose of a 4 × 4 block.
                     let byte_transpose: __m256i =
@@ -378,7 +378,7 @@ const PASCAL_NIBBLES: [[u8; 16]; 2] = {
 /// between bytes and between 16-bit halves. `$ops` and `$shuffles` are the
 /// pulp handles whose methods, named by the remaining arguments, do the
 /// bitwise operations and the byte shuffle. No closures in here (see
-/// `splitmix::fill_groups_avx2`).
+/// `splitmix_avx2::fill_groups_f32`).
 macro_rules! pascal_vectors {
     (
         $j:ident, $y:ident, $whole:ident, $lanes:literal, $vector:ty, $ops:ident, $shuffles:ident,

@@ -46,11 +46,8 @@
 use super::stratified_f32::F32Coordinate;
 use super::stratified_pow2::{fixed_sum, PowerOfTwoGrid};
 use super::stratified_shuffle::{shuffles, CellShuffle};
-use super::{hash2, mix64};
+use super::{hash2, mix64, TWO_POW_M32};
 use lambert_geometry::precision::f64::ONE_MINUS_EPSILON;
-
-/// `2⁻³²`.
-pub(super) const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
 
 /// Samples per block of the structure-of-arrays loops.
 pub(super) const BLOCK: usize = 256;

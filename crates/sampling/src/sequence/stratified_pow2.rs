@@ -238,7 +238,7 @@ const SPAN: usize = 256;
 /// are tested against.
 #[cfg(test)]
 pub(super) fn jittered_sum(k: u32, h: u32) -> f64 {
-    f64::from(k) + f64::from(h) * super::stratified_batch::TWO_POW_M32
+    f64::from(k) + f64::from(h) * super::TWO_POW_M32
 }
 
 /// The fixed-point sum `k·2³² + h` of stratum `k` and jitter bits `h`,
