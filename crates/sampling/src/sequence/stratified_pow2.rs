@@ -141,39 +141,71 @@ impl PowerOfTwoGrid {
         store: impl Fn((u32, u32)) -> T,
     ) {
         let short_shifts = self.log_nx.max(self.log_ny) <= HASH_HIGH_EXACT_BITS;
-        let short_jitter = jitter_bits <= HASH_HIGH_EXACT_BITS;
-        match (short_shifts, short_jitter) {
-            (true, true) => self.fill::<T, true, true>(keys, dim, first, x, y, store),
-            (true, false) => self.fill::<T, true, false>(keys, dim, first, x, y, store),
+        let jitter = if jitter_bits == 0 {
+            Jitter::NONE
+        } else if jitter_bits <= HASH_HIGH_EXACT_BITS {
+            Jitter::SHORT
+        } else {
+            Jitter::WHOLE
+        };
+        // The pair and the hashes' forms are fixed for the pass: each
+        // combination is its own loop, with no test of them per point
+        // (with `dim` a run-time value the compiler kept a branch on it in
+        // the loop and spilled constants of both arms).
+        macro_rules! fill {
+            ($first:expr, $short:expr, $jitter:expr) => {
+                self.fill::<T, $first, $short, { $jitter }>(keys, first, x, y, store)
+            };
+        }
+        match (dim == 0, short_shifts, jitter) {
+            (true, true, Jitter::NONE) => fill!(true, true, Jitter::NONE),
+            (true, true, Jitter::SHORT) => fill!(true, true, Jitter::SHORT),
+            (true, true, _) => fill!(true, true, Jitter::WHOLE),
+            (false, true, Jitter::NONE) => fill!(false, true, Jitter::NONE),
+            (false, true, Jitter::SHORT) => fill!(false, true, Jitter::SHORT),
+            (false, true, _) => fill!(false, true, Jitter::WHOLE),
             // Sides above 2¹⁵ (N > 2³⁰): every hash whole.
-            (false, _) => self.fill::<T, false, false>(keys, dim, first, x, y, store),
+            (true, false, _) => fill!(true, false, Jitter::WHOLE),
+            (false, false, _) => fill!(false, false, Jitter::WHOLE),
         }
     }
 
-    /// Point `i`'s strata and jitter bits, `((kx, hx), (ky, hy))`, of
-    /// request pair `dim` (0: the first pair, column by column; else the
-    /// cells permuted over `domain`), with the shifts' and the jitters'
-    /// hashes cut short ([`hash_u32_cut`]) or whole, as the flags say.
+    /// Point `i`'s position on the grid before the spreads: for the first
+    /// request pair (`FIRST`) `(i + b) mod N`, read column by column; for
+    /// a later one its cell permuted over `domain`, read row by row
+    /// ([`PowerOfTwoGrid::parts`] splits it).
     #[inline(always)]
-    fn parts<const SHORT_SHIFTS: bool, const SHORT_JITTER: bool>(
+    fn position<const FIRST: bool>(self, keys: &PairKeys, domain: Domain, i: u32) -> u32 {
+        let (n_mask, _, _) = self.masks();
+        if FIRST {
+            i.wrapping_add(keys.offset) & n_mask
+        } else {
+            domain.step(i, &keys.cell) & n_mask
+        }
+    }
+
+    /// Point `i`'s strata and jitter bits, `((kx, hx), (ky, hy))`, from its
+    /// [`position`](PowerOfTwoGrid::position) in the first request pair
+    /// (`FIRST`: column ⌊p / ny⌋·g_x, row p mod ny) or a later one
+    /// (column and row of the cell), with the shifts' hashes cut short
+    /// ([`hash_u32_cut`]) or whole, as `SHORT_SHIFTS` says, and the
+    /// jitters' as `JITTER` says ([`Jitter`]; 0 for [`Jitter::NONE`]).
+    #[inline(always)]
+    fn parts<const FIRST: bool, const SHORT_SHIFTS: bool, const JITTER: u8>(
         self,
         keys: &PairKeys,
-        dim: u64,
-        domain: Domain,
+        position: u32,
         i: u32,
     ) -> ((u32, u32), (u32, u32)) {
-        let (n_mask, nx_mask, ny_mask) = self.masks();
+        let (_, nx_mask, ny_mask) = self.masks();
         let (log_nx, log_ny) = (self.log_nx, self.log_ny);
-        let (c, r) = if dim == 0 {
-            // Column by column: p = (i + b) mod N, column ⌊p / ny⌋·g_x.
-            let p = i.wrapping_add(keys.offset) & n_mask;
+        let (c, r) = if FIRST {
             (
-                (p >> log_ny).wrapping_mul(self.column_unit) & nx_mask,
-                p & ny_mask,
+                (position >> log_ny).wrapping_mul(self.column_unit) & nx_mask,
+                position & ny_mask,
             )
         } else {
-            let cell = domain.step(i, &keys.cell) & n_mask;
-            (cell & nx_mask, cell >> log_nx)
+            (position & nx_mask, position >> log_nx)
         };
         let column_spread = c.wrapping_mul(self.column_unit) & nx_mask;
         let row_spread = r.wrapping_mul(self.row_unit) & ny_mask;
@@ -183,18 +215,18 @@ impl PowerOfTwoGrid {
         let kx = (c << log_ny) | ((row_spread + s) & ny_mask);
         let ky = (r << log_nx) | ((column_spread + t) & nx_mask);
         (
-            (kx, hash_u32_cut::<SHORT_JITTER>(keys.jitter, i)),
-            (ky, hash_u32_cut::<SHORT_JITTER>(keys.jitter >> 32, i)),
+            (kx, Jitter::bits::<JITTER>(keys.jitter, i)),
+            (ky, Jitter::bits::<JITTER>(keys.jitter >> 32, i)),
         )
     }
 
-    /// [`PowerOfTwoGrid::fill_pass`] with the hashes cut short or whole,
-    /// as the flags say ([`PowerOfTwoGrid::parts`]).
+    /// [`PowerOfTwoGrid::fill_pass`] for the first pair or a later one,
+    /// with the hashes cut short, whole or (the jitters) skipped, as the
+    /// flags say ([`PowerOfTwoGrid::parts`]).
     #[inline(always)]
-    fn fill<T, const SHORT_SHIFTS: bool, const SHORT_JITTER: bool>(
+    fn fill<T, const FIRST: bool, const SHORT_SHIFTS: bool, const JITTER: u8>(
         self,
         keys: &PairKeys,
-        dim: u64,
         first: u32,
         x: &mut [T],
         y: &mut [T],
@@ -212,11 +244,16 @@ impl PowerOfTwoGrid {
             let m = xs.len().min(ys.len());
             let base = first.wrapping_add((s * SPAN) as u32);
             let (kx, hx, ky, hy) = (&mut kx[..m], &mut hx[..m], &mut ky[..m], &mut hy[..m]);
+            // The positions first, in kx (a later pair's permutation step
+            // is a long chain of dependent operations; in a loop of its
+            // own more points' chains overlap).
+            for (j, k) in kx.iter_mut().enumerate() {
+                *k = self.position::<FIRST>(keys, domain, base.wrapping_add(j as u32));
+            }
             for j in 0..m {
-                ((kx[j], hx[j]), (ky[j], hy[j])) = self.parts::<SHORT_SHIFTS, SHORT_JITTER>(
+                ((kx[j], hx[j]), (ky[j], hy[j])) = self.parts::<FIRST, SHORT_SHIFTS, JITTER>(
                     keys,
-                    dim,
-                    domain,
+                    kx[j],
                     base.wrapping_add(j as u32),
                 );
             }
@@ -225,6 +262,31 @@ impl PowerOfTwoGrid {
                 xs[j] = store((kx[j], hx[j]));
                 ys[j] = store((ky[j], hy[j]));
             }
+        }
+    }
+}
+
+/// How a pass forms its jitter bits (the `JITTER` parameter of
+/// [`PowerOfTwoGrid::fill`]).
+struct Jitter;
+
+impl Jitter {
+    /// The coordinates read none (an f32 coordinate for `N ≥ 2²⁴`, whose
+    /// stratum alone fills its 24 bits): no hash, `h = 0`, the same
+    /// values, since the store reads no bit of `h`.
+    const NONE: u8 = 0;
+    /// At most [`HASH_HIGH_EXACT_BITS`]: the hash cut short.
+    const SHORT: u8 = 1;
+    /// More: the whole hash.
+    const WHOLE: u8 = 2;
+
+    /// Point `i`'s jitter bits under `key`, formed as `JITTER` says.
+    #[inline(always)]
+    fn bits<const JITTER: u8>(key: u64, i: u32) -> u32 {
+        match JITTER {
+            Jitter::NONE => 0,
+            Jitter::SHORT => hash_u32_cut::<true>(key, i),
+            _ => hash_u32_cut::<false>(key, i),
         }
     }
 }
