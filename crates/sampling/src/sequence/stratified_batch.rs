@@ -1004,7 +1004,7 @@ fn fill_general_with<T, const SHORT_JITTER: bool>(
         grid.column_spread.get_block(&c[..m], &mut spread_c[..m]);
         grid.row_spread.get_block(&r[..m], &mut spread_r[..m]);
         let (x, y) = (&mut x[start..start + m], &mut y[start..start + m]);
-        let cells = [&c[..m], &r[..m]];
+        let cells = [&mut c[..m], &mut r[..m]];
         let spreads = [&mut spread_c[..m], &mut spread_r[..m]];
         // The same shifts either way (`reduce_u32_narrow`); the narrow form
         // vectorises better.
@@ -1232,7 +1232,8 @@ fn first_pair_runs<T>(
     }
 }
 
-/// The points of one block of [`fill_pass`] from their cells and spreads,
+/// The points of one block of [`fill_pass`] from their cells and spreads
+/// (both overwritten),
 /// with the shifts reduced by `reduce`, the jitters hashed by
 /// `jitter_hash` and the coordinates made by `store` (one instantiation
 /// per form). The spreads are overwritten by the strata, rather than two
@@ -1245,7 +1246,7 @@ fn first_pair_runs<T>(
 fn block_points<T>(
     grid: &Grid,
     keys: &PairKeys,
-    [c, r]: [&[u32]; 2],
+    [c, r]: [&mut [u32]; 2],
     [spread_c, spread_r]: [&mut [u32]; 2],
     base: u32,
     x: &mut [T],
@@ -1265,10 +1266,26 @@ fn block_points<T>(
     }
     let (strata_x, strata_y) = (spread_c, spread_r);
     let (jitter_x, jitter_y) = (keys.jitter, keys.jitter >> 32);
-    for k in 0..m {
-        let i = base + k as u32;
-        x[k] = store((strata_x[k], jitter_hash(jitter_x, i)));
-        y[k] = store((strata_y[k], jitter_hash(jitter_y, i)));
+    if core::mem::size_of::<T>() <= 4 {
+        for k in 0..m {
+            let i = base + k as u32;
+            x[k] = store((strata_x[k], jitter_hash(jitter_x, i)));
+            y[k] = store((strata_y[k], jitter_hash(jitter_y, i)));
+        }
+    } else {
+        // f64 coordinates: the jitters first, into the cells' arrays (read
+        // no more), so that their 32-bit hashes run eight lanes to an AVX2
+        // register instead of the four an f64 vector holds (as the first
+        // pair's kernel does; a later pair's f64 point at N = 1.6·10⁷
+        // 3.54 → 2.99 ns on the Zen 2 host).
+        for (k, (hx, hy)) in c.iter_mut().zip(r.iter_mut()).enumerate() {
+            let i = base + k as u32;
+            (*hx, *hy) = (jitter_hash(jitter_x, i), jitter_hash(jitter_y, i));
+        }
+        for k in 0..m {
+            x[k] = store((strata_x[k], c[k]));
+            y[k] = store((strata_y[k], r[k]));
+        }
     }
 }
 
