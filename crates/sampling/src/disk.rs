@@ -24,6 +24,16 @@ macro_rules! disk_impl {
         /// ```
         #[inline(always)]
         pub fn concentric_polar(u: V2) -> (Real, Real, Real) {
+            concentric_polar_from(concentric_wedge(u))
+        }
+
+        /// The first half of [`concentric_polar`]: the wedge of `u`,
+        /// `(t, den, a_wins)` with t = numerator/denominator ∈ [−1, 1],
+        /// den the signed radius, `a_wins` whether |a| > |b| (a = 2u₀ − 1,
+        /// b = 2u₁ − 1). The slice forms run the two halves in separate
+        /// loops (see `sample_cosine_hemisphere_soa`).
+        #[inline(always)]
+        pub(crate) fn concentric_wedge(u: V2) -> (Real, Real, bool) {
             let a = 2.0 * u.x - 1.0;
             let b = 2.0 * u.y - 1.0;
             // Both wedges at once, resolved by selects rather than branches
@@ -32,6 +42,13 @@ macro_rules! disk_impl {
             let a_wins = a.abs() > b.abs();
             let (num, den) = if a_wins { (b, a) } else { (a, b) };
             let t = if den == 0.0 { 0.0 } else { num / den };
+            (t, den, a_wins)
+        }
+
+        /// The second half of [`concentric_polar`]: (r, sin φ, cos φ) from
+        /// the wedge [`concentric_wedge`] found.
+        #[inline(always)]
+        pub(crate) fn concentric_polar_from((t, den, a_wins): (Real, Real, bool)) -> (Real, Real, Real) {
             let (s, c) = sin_cos_quarter((PI / 4.0) * t);
             // a wins: φ = (π/4)t, (cos φ, sin φ) = (c, s);
             // b wins: φ = π/2 − (π/4)t, (cos φ, sin φ) = (s, c).

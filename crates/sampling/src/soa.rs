@@ -1,6 +1,11 @@
 //! The loop shared by the structure-of-arrays warps: one 2-D point in, one
 //! 3-D direction out, per index.
 
+/// Points per block of the slice forms that run a warp in more than one
+/// loop, keeping its intermediate values in arrays of this length (1 KiB
+/// per f32 array, in the first-level cache).
+pub(crate) const SOA_BLOCK: usize = 256;
+
 /// Writes `f((ux[i], uy[i]))` to `(wx[i], wy[i], wz[i])` for every index of
 /// the shortest slice. The slices are cut to one length first, so the loop
 /// has no bounds checks and vectorises when `f` inlines branch-free.
