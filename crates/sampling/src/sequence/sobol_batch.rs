@@ -588,20 +588,37 @@ static REVERSED_BYTES: [u32; 256] = {
 /// table of the 256 low ones. A block spans at most two windows. x86 has
 /// no vector bit reversal (it takes a dozen instructions per lane), and
 /// the index was one of three reversals per point.
+///
+/// With a `shuffle` key each is then hashed, `j[k] = C(R(base + k), key)`,
+/// in the same loop (the index shuffle).
 #[inline(always)]
-fn reversed_indices(base: u32, j: &mut [u32]) {
+fn reversed_indices(base: u32, j: &mut [u32], shuffle: Option<u32>) {
     const { assert!(BLOCK <= 256) };
     let low = (base & 0xff) as usize;
     let window = base & !0xff;
     let in_first = (256 - low).min(j.len());
     let (first, second) = j.split_at_mut(in_first);
-    let r = window.reverse_bits();
-    for (j, &t) in first.iter_mut().zip(&REVERSED_BYTES[low..]) {
-        *j = r ^ t;
-    }
-    let r = window.wrapping_add(256).reverse_bits();
-    for (j, &t) in second.iter_mut().zip(&REVERSED_BYTES[..]) {
-        *j = r ^ t;
+    let windows = [
+        (first, &REVERSED_BYTES[low..], window.reverse_bits()),
+        (
+            second,
+            &REVERSED_BYTES[..],
+            window.wrapping_add(256).reverse_bits(),
+        ),
+    ];
+    for (j, table, r) in windows {
+        match shuffle {
+            Some(key) => {
+                for (j, &t) in j.iter_mut().zip(table) {
+                    *j = burley_hash(r ^ t, key);
+                }
+            }
+            None => {
+                for (j, &t) in j.iter_mut().zip(table) {
+                    *j = r ^ t;
+                }
+            }
+        }
     }
 }
 
@@ -627,19 +644,26 @@ where
         let base = first.wrapping_add(offset as u32);
         let j = &mut j[..m];
         // j = C(R(i), k) (or R(i) unshuffled): the shuffled index, reversed.
-        reversed_indices(base, j);
-        if let Some(key) = plan.shuffle {
-            for j in j.iter_mut() {
-                *j = burley_hash(*j, key);
-            }
-        }
+        reversed_indices(base, j, plan.shuffle);
         for ((matrix, scramble), out) in matrices
             .iter()
             .zip(plan.scramble)
             .zip([&mut xs[..m], &mut ys[..m]])
         {
-            matrix.apply(j, out);
-            finish(scramble, out);
+            match (matrix, scramble) {
+                // The first dimension's whole chain, R(C(R(j))), in one
+                // loop: a reversal, a hash and a reversal, where the two
+                // loops stored and reloaded the block between them.
+                (ReversedMatrix::Reverse, CoordinateScramble::FastOwen(key)) => {
+                    for (y, &j) in out.iter_mut().zip(j.iter()) {
+                        *y = burley_hash(j.reverse_bits(), key).reverse_bits();
+                    }
+                }
+                _ => {
+                    matrix.apply(j, out);
+                    finish(scramble, out);
+                }
+            }
         }
         sink(offset, &xs[..m], &ys[..m]);
         offset += m;
@@ -670,7 +694,7 @@ mod tests {
                     continue;
                 }
                 let mut j = vec![0u32; len];
-                reversed_indices(base, &mut j);
+                reversed_indices(base, &mut j, None);
                 for (k, &got) in j.iter().enumerate() {
                     assert_eq!(
                         got,
