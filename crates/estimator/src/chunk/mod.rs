@@ -23,6 +23,7 @@
 //!   block by block, not a copy inlined into each loop.
 
 mod precision_f32;
+mod requests;
 mod stream;
 
 use std::cell::RefCell;
@@ -186,13 +187,7 @@ pub fn sequence_chunk<S: SampleSequence>(
         isa.run(
             #[inline(always)]
             || {
-                for (request, (x, y)) in
-                    s.px.chunks_exact_mut(n)
-                        .zip(s.py.chunks_exact_mut(n))
-                        .enumerate()
-                {
-                    sequence.fill_2d_split(range.start, request as u64, x, y);
-                }
+                requests::fill_requests(sequence, range.start, n, &mut s.px, &mut s.py);
                 let mut hits = vec![[0u64; 2]; prepared.len()];
                 let mut start = 0;
                 while start < n {

@@ -257,14 +257,8 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
         let result = isa.run(
             #[inline(always)]
             || {
-                let requests = qx.chunks_exact_mut(n).zip(qy.chunks_exact_mut(n));
-                for (request, (x, y)) in requests.enumerate() {
-                    sequence.fill_2d_split_f32(range.start, request as u64, x, y);
-                }
-                let requests = px.chunks_exact_mut(n).zip(py.chunks_exact_mut(n));
-                for (request, (x, y)) in requests.enumerate() {
-                    sequence.fill_2d_split(range.start, request as u64, x, y);
-                }
+                super::requests::fill_requests_f32(sequence, range.start, n, &mut qx, &mut qy);
+                super::requests::fill_requests(sequence, range.start, n, &mut px, &mut py);
                 let mut hits = vec![[0u64; 2]; prepared.len()];
                 let mut start = 0;
                 while start < n {

@@ -202,6 +202,56 @@ pub trait SampleSequence: Clone + Send + Sync {
         }
     }
 
+    /// Requests `request` and `request + 1` of samples `first + k` (a
+    /// multiple-importance sample's two points) into four arrays:
+    /// `[x0, y0]` as [`fill_2d_split`](SampleSequence::fill_2d_split) of
+    /// `request` gives them and `[x1, y1]` as it gives `request + 1`, to
+    /// the bit.
+    ///
+    /// The default makes the two calls; [`Sobol`] overrides it to compute
+    /// the work the two pairs share once. Inlined, as the fills it calls,
+    /// so that they run in the caller's instruction set (see
+    /// [`crate::isa::Isa::run`]).
+    ///
+    /// # Panics
+    /// If the four arrays differ in length.
+    ///
+    /// ```
+    /// use lambert_sampling::sequence::{SampleSequence, Sobol};
+    /// let seq = Sobol::new(3);
+    /// let mut two = [[0.0; 300]; 4];
+    /// let [a, b, c, d] = &mut two;
+    /// seq.fill_2d_split_two(7, 0, [a, b, c, d]);
+    /// let (mut x, mut y) = ([0.0; 300], [0.0; 300]);
+    /// seq.fill_2d_split(7, 1, &mut x, &mut y);
+    /// assert_eq!((two[2], two[3]), (x, y));
+    /// ```
+    #[inline(always)]
+    fn fill_2d_split_two(&self, first: u64, request: u64, [x0, y0, x1, y1]: [&mut [f64]; 4]) {
+        assert_four_lengths(
+            "fill_2d_split_two",
+            [x0.len(), y0.len(), x1.len(), y1.len()],
+        );
+        self.fill_2d_split(first, request, x0, y0);
+        self.fill_2d_split(first, request + 1, x1, y1);
+    }
+
+    /// [`fill_2d_split_two`](SampleSequence::fill_2d_split_two) in f32:
+    /// the values of [`fill_2d_split_f32`](SampleSequence::fill_2d_split_f32)
+    /// for the two requests, to the bit.
+    ///
+    /// # Panics
+    /// If the four arrays differ in length.
+    #[inline(always)]
+    fn fill_2d_split_f32_two(&self, first: u64, request: u64, [x0, y0, x1, y1]: [&mut [f32]; 4]) {
+        assert_four_lengths(
+            "fill_2d_split_f32_two",
+            [x0.len(), y0.len(), x1.len(), y1.len()],
+        );
+        self.fill_2d_split_f32(first, request, x0, y0);
+        self.fill_2d_split_f32(first, request + 1, x1, y1);
+    }
+
     /// [`fill_2d`](SampleSequence::fill_2d) in f32: `out[k]` is the value
     /// [`next_2d_f32`](SampleSequence::next_2d_f32) returns for request
     /// `request` of sample `first + k`, to the bit.
@@ -224,6 +274,15 @@ pub trait SampleSequence: Clone + Send + Sync {
 #[inline(always)]
 pub(crate) fn assert_split_lengths(method: &str, x: usize, y: usize) {
     assert_eq!(x, y, "{method}: x and y differ in length");
+}
+
+/// The panic of the two-request fills when their four arrays differ in
+/// length.
+pub(crate) fn assert_four_lengths(method: &str, lengths: [usize; 4]) {
+    assert!(
+        lengths.iter().all(|&l| l == lengths[0]),
+        "{method}: the four arrays differ in length ({lengths:?})"
+    );
 }
 
 /// `2^-32`.

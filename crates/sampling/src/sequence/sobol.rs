@@ -74,7 +74,8 @@
 use super::sobol_batch::{self, burley_hash, CoordinateScramble, PairPlan};
 use super::sobol_table::{SOBOL_DIMENSIONS, SOBOL_MATRICES};
 use super::{
-    assert_split_lengths, hash2, hash3, u32_to_f32, u32_to_f64, SampleSequence, TWO_POW_M53,
+    assert_four_lengths, assert_split_lengths, hash2, hash3, u32_to_f32, u32_to_f64,
+    SampleSequence, TWO_POW_M53,
 };
 use glam::{DVec2, Vec2};
 
@@ -339,6 +340,28 @@ impl Sobol {
     where
         F: FnMut(usize, u64, u32, &[u32], &[u32]),
     {
+        self.fill_pairs_u32(
+            first,
+            [request],
+            len,
+            #[inline(always)]
+            |offset, block_seed, local, [(xs, ys)]| sink(offset, block_seed, local, xs, ys),
+        );
+    }
+
+    /// [`fill_pair_u32`](Self::fill_pair_u32) for `R` requests of the same
+    /// samples at once (`sobol_batch::fill_pairs`, which shares their
+    /// index shuffle where their plans have one key).
+    #[inline(always)]
+    fn fill_pairs_u32<const R: usize, F>(
+        &self,
+        first: u64,
+        requests: [u64; R],
+        len: usize,
+        mut sink: F,
+    ) where
+        F: FnMut(usize, u64, u32, [(&[u32], &[u32]); R]),
+    {
         let mut done = 0usize;
         while done < len {
             let index = first.wrapping_add(done as u64);
@@ -346,14 +369,14 @@ impl Sobol {
             let local = index as u32;
             // Up to the end of this block of 2^32 indices.
             let room = ((1u64 << 32) - u64::from(local)).min((len - done) as u64) as usize;
-            let plan = self.pair_plan(block_seed, request);
+            let plans = requests.map(|request| self.pair_plan(block_seed, request));
             // Inlined, so the sink runs in the caller's instruction set.
-            sobol_batch::fill_pair(
-                &plan,
+            sobol_batch::fill_pairs(
+                plans.each_ref(),
                 local,
                 room,
                 #[inline(always)]
-                |offset, xs, ys| sink(done + offset, block_seed, local + offset as u32, xs, ys),
+                |offset, blocks| sink(done + offset, block_seed, local + offset as u32, blocks),
             );
             done += room;
         }
@@ -456,6 +479,60 @@ impl SampleSequence for Sobol {
                 let len = xs.len();
                 self.axis_f64(xs, block_seed, d, local, &mut x[offset..offset + len]);
                 self.axis_f64(ys, block_seed, d + 1, local, &mut y[offset..offset + len]);
+            },
+        );
+    }
+
+    /// Both requests in one pass of the batch kernel, which computes the
+    /// shuffled indices once where the two share their shuffle (the
+    /// global layout below dimension 256; the padded layout shuffles each
+    /// pair by its own key).
+    #[inline(always)]
+    fn fill_2d_split_two(&self, first: u64, request: u64, [x0, y0, x1, y1]: [&mut [f64]; 4]) {
+        assert_four_lengths(
+            "fill_2d_split_two",
+            [x0.len(), y0.len(), x1.len(), y1.len()],
+        );
+        let d = 2 * request;
+        self.fill_pairs_u32(
+            first,
+            [request, request + 1],
+            x0.len(),
+            #[inline(always)]
+            |offset, block_seed, local, [(xs0, ys0), (xs1, ys1)]| {
+                let len = xs0.len();
+                let range = offset..offset + len;
+                self.axis_f64(xs0, block_seed, d, local, &mut x0[range.clone()]);
+                self.axis_f64(ys0, block_seed, d + 1, local, &mut y0[range.clone()]);
+                self.axis_f64(xs1, block_seed, d + 2, local, &mut x1[range.clone()]);
+                self.axis_f64(ys1, block_seed, d + 3, local, &mut y1[range]);
+            },
+        );
+    }
+
+    /// [`fill_2d_split_two`](SampleSequence::fill_2d_split_two) in f32,
+    /// as [`fill_2d_split_f32`](SampleSequence::fill_2d_split_f32) makes
+    /// its values.
+    #[inline(always)]
+    fn fill_2d_split_f32_two(&self, first: u64, request: u64, [x0, y0, x1, y1]: [&mut [f32]; 4]) {
+        assert_four_lengths(
+            "fill_2d_split_f32_two",
+            [x0.len(), y0.len(), x1.len(), y1.len()],
+        );
+        self.fill_pairs_u32(
+            first,
+            [request, request + 1],
+            x0.len(),
+            #[inline(always)]
+            |offset, _, _, blocks| {
+                let len = blocks[0].0.len();
+                let outputs = [&mut *x0, &mut *y0, &mut *x1, &mut *y1];
+                let inputs = [blocks[0].0, blocks[0].1, blocks[1].0, blocks[1].1];
+                for (out, input) in outputs.into_iter().zip(inputs) {
+                    for (o, &v) in out[offset..offset + len].iter_mut().zip(input) {
+                        *o = u32_to_f32(v);
+                    }
+                }
             },
         );
     }

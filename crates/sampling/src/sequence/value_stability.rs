@@ -220,7 +220,11 @@ enum SplitF32 {
 /// regime (a single point, below and above the table threshold, several
 /// blocks with a partial one), requests in and past the first 256 Sobol
 /// dimensions, a batch crossing a block of `2^32` Sobol indices, and one
-/// wrapping past `2^64 − 1`.
+/// wrapping past `2^64 − 1`. The two-request fills give the one-request
+/// fills' values for both requests (request 127 and the next straddle
+/// Sobol dimension 256, where the global layout's shuffle key changes).
+/// Negative control: a two-request fill's second pair is not its first
+/// request's.
 fn check_batch_matches_cursor<S: SampleSequence>(seq: &S, name: &str, split_f32: SplitF32) {
     let ranges: [(u64, usize); 7] = [
         (0, 1),
@@ -240,6 +244,7 @@ fn check_batch_matches_cursor<S: SampleSequence>(seq: &S, name: &str, split_f32:
             seq.fill_2d(first, request, &mut batch);
             seq.fill_2d_f32(first, request, &mut batch_f32);
             seq.fill_2d_split_f32(first, request, &mut split_x, &mut split_y);
+            check_two_requests(seq, name, first, request, len);
             for k in 0..len {
                 let i = first.wrapping_add(k as u64);
                 cursor.start_sample(i);
@@ -272,6 +277,48 @@ fn check_batch_matches_cursor<S: SampleSequence>(seq: &S, name: &str, split_f32:
                 );
             }
         }
+    }
+}
+
+/// The two-request fills of `request` and `request + 1` against the
+/// one-request fills (see [`check_batch_matches_cursor`]).
+fn check_two_requests<S: SampleSequence>(
+    seq: &S,
+    name: &str,
+    first: u64,
+    request: u64,
+    len: usize,
+) {
+    let one = |r: u64| {
+        let (mut x, mut y) = (vec![0.0f64; len], vec![0.0f64; len]);
+        seq.fill_2d_split(first, r, &mut x, &mut y);
+        let (mut xf, mut yf) = (vec![0.0f32; len], vec![0.0f32; len]);
+        seq.fill_2d_split_f32(first, r, &mut xf, &mut yf);
+        ((x, y), (xf, yf))
+    };
+    let (((x0, y0), (xf0, yf0)), ((x1, y1), (xf1, yf1))) = (one(request), one(request + 1));
+    let mut two = vec![vec![0.0f64; len]; 4];
+    let [a, b, c, d] = &mut two[..] else {
+        unreachable!()
+    };
+    seq.fill_2d_split_two(first, request, [a, b, c, d]);
+    assert_eq!(
+        two,
+        [x0.clone(), y0, x1, y1],
+        "{name} two: {first} request {request}"
+    );
+    let mut two_f32 = vec![vec![0.0f32; len]; 4];
+    let [a, b, c, d] = &mut two_f32[..] else {
+        unreachable!()
+    };
+    seq.fill_2d_split_f32_two(first, request, [a, b, c, d]);
+    assert_eq!(
+        two_f32,
+        [xf0, yf0, xf1, yf1],
+        "{name} two f32: {first} request {request}"
+    );
+    if len > 1 {
+        assert_ne!(two[2], x0, "{name}: the second pair is the first's");
     }
 }
 
