@@ -37,39 +37,38 @@ pub(super) const STEP: usize = 16;
 #[inline(always)]
 pub(super) fn fill_groups_f32(isa: Isa, state: u64, x: &mut [f32], y: &mut [f32]) -> bool {
     #[cfg(target_arch = "x86_64")]
-    if isa == Isa::Avx2Fma {
-        if let Some(simd) = pulp::x86::V3::try_new() {
-            simd.vectorize(
-                #[inline(always)]
-                || {
-                    let (a2, a) = (simd.avx2, simd.avx);
-                    let mix = Mix::new(simd);
-                    let mut states = mix.lane_states(state);
-                    let scale = a._mm256_set1_ps(1.0 / 16_777_216.0);
-                    // No closures in here: one the compiler declined to
-                    // inline is compiled without AVX2, and every intrinsic
-                    // in it becomes a call (25× slower, measured).
-                    let (xs, _) = x.as_chunks_mut::<STEP>();
-                    let (ys, _) = y.as_chunks_mut::<STEP>();
-                    for (xg, yg) in xs.iter_mut().zip(ys) {
-                        let mut coordinates = [[0.0f32; 8]; 4];
-                        for (c, s) in coordinates.iter_mut().zip(states.iter_mut()) {
-                            let words = a2._mm256_srli_epi32::<8>(mix.mix64(*s));
-                            *c = pulp::cast(a._mm256_mul_ps(a._mm256_cvtepi32_ps(words), scale));
-                            *s = mix.advance(*s);
-                        }
-                        xg[..8].copy_from_slice(&coordinates[0]);
-                        xg[8..].copy_from_slice(&coordinates[1]);
-                        yg[..8].copy_from_slice(&coordinates[2]);
-                        yg[8..].copy_from_slice(&coordinates[3]);
-                    }
-                },
-            );
-            return true;
-        }
+    return with_avx2(
+        isa,
+        #[inline(always)]
+        |simd| {
+            let (a2, a) = (simd.avx2, simd.avx);
+            let mix = Mix::new(simd);
+            let mut states = mix.lane_states(state);
+            let scale = a._mm256_set1_ps(1.0 / 16_777_216.0);
+            // No closures in here: one the compiler declined to
+            // inline is compiled without AVX2, and every intrinsic
+            // in it becomes a call (25× slower, measured).
+            let (xs, _) = x.as_chunks_mut::<STEP>();
+            let (ys, _) = y.as_chunks_mut::<STEP>();
+            for (xg, yg) in xs.iter_mut().zip(ys) {
+                let mut coordinates = [[0.0f32; 8]; 4];
+                for (c, s) in coordinates.iter_mut().zip(states.iter_mut()) {
+                    let words = a2._mm256_srli_epi32::<8>(mix.mix64(*s));
+                    *c = pulp::cast(a._mm256_mul_ps(a._mm256_cvtepi32_ps(words), scale));
+                    *s = mix.advance(*s);
+                }
+                xg[..8].copy_from_slice(&coordinates[0]);
+                xg[8..].copy_from_slice(&coordinates[1]);
+                yg[..8].copy_from_slice(&coordinates[2]);
+                yg[8..].copy_from_slice(&coordinates[3]);
+            }
+        },
+    );
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let _ = (isa, state, x, y);
+        false
     }
-    let _ = (isa, state, x, y);
-    false
 }
 
 /// The f64 fill's points with AVX2 (when `isa` is [`Isa::Avx2Fma`];
@@ -81,54 +80,67 @@ pub(super) fn fill_groups_f32(isa: Isa, state: u64, x: &mut [f32], y: &mut [f32]
 #[inline(always)]
 pub(super) fn fill_points_f64(isa: Isa, state: u64, x: &mut [f64], y: &mut [f64]) -> bool {
     #[cfg(target_arch = "x86_64")]
+    return with_avx2(
+        isa,
+        #[inline(always)]
+        |simd| {
+            let (a2, a) = (simd.avx2, simd.avx);
+            let mix = Mix::new(simd);
+            let mut states = mix.lane_states(state);
+            let one_bits = a._mm256_set1_epi64x(0x3ff0_0000_0000_0000);
+            let fraction = a._mm256_set1_epi64x(0x000f_ffff_fff0_0000);
+            let one = a._mm256_set1_pd(1.0);
+            // No closures in here (see `fill_groups_f32`).
+            let (xs, _) = x.as_chunks_mut::<STEP>();
+            let (ys, _) = y.as_chunks_mut::<STEP>();
+            for (xg, yg) in xs.iter_mut().zip(ys) {
+                let mut highs = [[0.0f64; 4]; 4];
+                let mut lows = [[0.0f64; 4]; 4];
+                for ((h, l), s) in highs.iter_mut().zip(lows.iter_mut()).zip(states.iter_mut()) {
+                    let bits = mix.mix64(*s);
+                    // The high half's bits at fraction bits 20..52
+                    // (a shift right by 12), the low half's (a
+                    // shift left by 20), each under 1.0's exponent.
+                    let high = a2._mm256_and_si256(a2._mm256_srli_epi64::<12>(bits), fraction);
+                    let low = a2._mm256_and_si256(a2._mm256_slli_epi64::<20>(bits), fraction);
+                    *h = pulp::cast(
+                        a._mm256_sub_pd(pulp::cast(a2._mm256_or_si256(one_bits, high)), one),
+                    );
+                    *l = pulp::cast(
+                        a._mm256_sub_pd(pulp::cast(a2._mm256_or_si256(one_bits, low)), one),
+                    );
+                    *s = mix.advance(*s);
+                }
+                for (v, (h, l)) in highs.iter().zip(&lows).enumerate() {
+                    xg[4 * v..4 * v + 4].copy_from_slice(h);
+                    yg[4 * v..4 * v + 4].copy_from_slice(l);
+                }
+            }
+        },
+    );
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let _ = (isa, state, x, y);
+        false
+    }
+}
+
+/// Runs `body` with AVX2 and FMA enabled when `isa` is [`Isa::Avx2Fma`]
+/// and the processor has them; returns whether it ran. `body` is passed
+/// `#[inline(always)]`, so that its intrinsics compile inline in the
+/// enabled context.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn with_avx2(isa: Isa, body: impl FnOnce(pulp::x86::V3)) -> bool {
     if isa == Isa::Avx2Fma {
         if let Some(simd) = pulp::x86::V3::try_new() {
             simd.vectorize(
                 #[inline(always)]
-                || {
-                    let (a2, a) = (simd.avx2, simd.avx);
-                    let mix = Mix::new(simd);
-                    let mut states = mix.lane_states(state);
-                    let one_bits = a._mm256_set1_epi64x(0x3ff0_0000_0000_0000);
-                    let fraction = a._mm256_set1_epi64x(0x000f_ffff_fff0_0000);
-                    let one = a._mm256_set1_pd(1.0);
-                    // No closures in here (see `fill_groups_f32`).
-                    let (xs, _) = x.as_chunks_mut::<STEP>();
-                    let (ys, _) = y.as_chunks_mut::<STEP>();
-                    for (xg, yg) in xs.iter_mut().zip(ys) {
-                        let mut highs = [[0.0f64; 4]; 4];
-                        let mut lows = [[0.0f64; 4]; 4];
-                        for ((h, l), s) in
-                            highs.iter_mut().zip(lows.iter_mut()).zip(states.iter_mut())
-                        {
-                            let bits = mix.mix64(*s);
-                            // The high half's bits at fraction bits 20..52
-                            // (a shift right by 12), the low half's (a
-                            // shift left by 20), each under 1.0's exponent.
-                            let high =
-                                a2._mm256_and_si256(a2._mm256_srli_epi64::<12>(bits), fraction);
-                            let low =
-                                a2._mm256_and_si256(a2._mm256_slli_epi64::<20>(bits), fraction);
-                            *h = pulp::cast(a._mm256_sub_pd(
-                                pulp::cast(a2._mm256_or_si256(one_bits, high)),
-                                one,
-                            ));
-                            *l = pulp::cast(
-                                a._mm256_sub_pd(pulp::cast(a2._mm256_or_si256(one_bits, low)), one),
-                            );
-                            *s = mix.advance(*s);
-                        }
-                        for (v, (h, l)) in highs.iter().zip(&lows).enumerate() {
-                            xg[4 * v..4 * v + 4].copy_from_slice(h);
-                            yg[4 * v..4 * v + 4].copy_from_slice(l);
-                        }
-                    }
-                },
+                || body(simd),
             );
             return true;
         }
     }
-    let _ = (isa, state, x, y);
     false
 }
 
