@@ -54,12 +54,19 @@ macro_rules! disk_impl {
             // b wins: φ = π/2 − (π/4)t, (cos φ, sin φ) = (s, c).
             let (cos_phi, sin_phi) = if a_wins { (c, s) } else { (s, c) };
             // The sign of den, as a flip rather than a product with ±1
-            // (the same value, without the multiplies).
-            if den.is_sign_negative() {
-                (den.abs(), -sin_phi, -cos_phi)
-            } else {
-                (den.abs(), sin_phi, cos_phi)
-            }
+            // (the same value, without the multiplies): den's sign bit
+            // xored into both, which is negation where den < 0 (or −0).
+            // Written as bits because the compiler's form of the select
+            // `if den < 0 { −s } else { s }` took a compare, two negations
+            // and three blends a vector; these are an and and two xors
+            // (cosine-hemisphere f32 slice form on the Zen 2 host, warp
+            // alone: 1.00 → 0.92 ns a point, the same bits).
+            let sign = den.to_bits() & (-0.0 as Real).to_bits();
+            (
+                den.abs(),
+                Real::from_bits(sin_phi.to_bits() ^ sign),
+                Real::from_bits(cos_phi.to_bits() ^ sign),
+            )
         }
 
         /// A point of the unit disk, uniform in area (density 1/π per unit
