@@ -37,7 +37,7 @@ use super::emitter_light::{
     disk_table_direction, sample_cap, sample_disk, sample_disk_table, sample_polygon, sample_sky,
     sample_solid_angle, sample_sphere,
 };
-use super::listing::{gather, list_set_bits};
+use super::listing::{grouped_values, list_set_bits};
 use super::{
     EmitterArea, EmitterLight, EmitterProjected, Heuristic, LightDirection, PartHits,
     PreparedEmitter, Store, Technique,
@@ -454,16 +454,14 @@ fn cone_mis_batch(
         // Pass 3: whole groups, the last one padded with coordinates left
         // from before (or zero), whose values are not used.
         let [gux, guy, cosines] = &mut gathered;
-        gather(&listed[..count], ux, uy, gux, guy);
-        let padded = count.div_ceil(MIS_GROUP) * MIS_GROUP;
-        let (cosine_groups, _) = cosines[..padded].as_chunks_mut::<MIS_GROUP>();
-        let coordinates = lanes(gux, padded).iter().zip(lanes(guy, padded));
-        for (cosines, (ux, uy)) in cosine_groups.iter_mut().zip(coordinates) {
-            for k in 0..MIS_GROUP {
-                cosines[k] = cone.cosine_value(h, DVec2::new(ux[k], uy[k]));
-            }
-        }
-        for (&k, &cosine) in listed[..count].iter().zip(&cosines[..count]) {
+        let cosines = grouped_values::<f64, MIS_GROUP>(
+            &listed[..count],
+            (ux, uy),
+            [gux, guy, cosines],
+            #[inline(always)]
+            |x, y| cone.cosine_value(h, DVec2::new(x, y)),
+        );
+        for (&k, &cosine) in listed[..count].iter().zip(cosines) {
             let k = usize::from(k);
             hits[0] += u64::from(cosine != 0.0);
             // `light + cosine`: the same bits as `cosine + light`

@@ -38,7 +38,7 @@ use lambert_sampling::isa::Isa;
 use super::batch::MAX_SPHERICAL_FAN;
 use super::cone_mis::ConeMisF32;
 use super::cone_window::CosineWindowF32;
-use super::listing::{gather, list_set_bits};
+use super::listing::{grouped_values, list_set_bits};
 use super::prepared_f32::{Area, Light, PreparedEmitterF32, Projected, Shape};
 use super::{Heuristic, PartHits, Store, Technique};
 
@@ -523,17 +523,15 @@ fn cone_mis_batch(
             // Pass 3: whole groups, the last one padded with the previous
             // span's (or zero) coordinates, whose values are not used.
             let [gux, guy, cosines] = &mut gathered;
-            gather(&listed[..count], ux, uy, gux, guy);
-            let padded = count.div_ceil(MIS_GROUP) * MIS_GROUP;
-            let (cosine_groups, _) = cosines[..padded].as_chunks_mut::<MIS_GROUP>();
-            let coordinates = lanes(gux, padded).iter().zip(lanes(guy, padded));
-            for (cosines, (ux, uy)) in cosine_groups.iter_mut().zip(coordinates) {
-                for k in 0..MIS_GROUP {
-                    cosines[k] = cone.cosine_value(h, Vec2::new(ux[k], uy[k]));
-                }
-            }
+            let cosines = grouped_values::<f32, MIS_GROUP>(
+                &listed[..count],
+                (ux, uy),
+                [gux, guy, cosines],
+                #[inline(always)]
+                |x, y| cone.cosine_value(h, Vec2::new(x, y)),
+            );
             let mut cosine_hits = 0u32;
-            for (&k, &cosine) in listed[..count].iter().zip(&cosines[..count]) {
+            for (&k, &cosine) in listed[..count].iter().zip(cosines) {
                 let k = usize::from(k);
                 cosine_hits += u32::from(cosine != 0.0);
                 sums[k] = cosine + lights[k];

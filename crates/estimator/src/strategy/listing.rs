@@ -35,3 +35,31 @@ pub(super) fn gather<T: Copy>(listed: &[u16], x: &[T], y: &[T], gx: &mut [T], gy
         (*gx, *gy) = (x[usize::from(k)], y[usize::from(k)]);
     }
 }
+
+/// The cosine half of the listed samples: their coordinates gathered
+/// ([`gather`]) into `gux`, `guy`, then `values[i] = value(gux[i],
+/// guy[i])` over whole groups of `G` lanes, the last group padded with
+/// whatever the arrays held past the listed count (earlier coordinates, or
+/// zero), whose values are computed but not used, so that the loop runs
+/// in whole vectors. Returns the listed samples' values, in order.
+#[inline(always)]
+pub(super) fn grouped_values<'v, T: Copy, const G: usize>(
+    listed: &[u16],
+    (ux, uy): (&[T], &[T]),
+    [gux, guy, values]: [&'v mut [T]; 3],
+    value: impl Fn(T, T) -> T,
+) -> &'v [T] {
+    let count = listed.len();
+    gather(listed, ux, uy, gux, guy);
+    let padded = count.div_ceil(G) * G;
+    let (value_groups, _) = values[..padded].as_chunks_mut::<G>();
+    let (x_groups, _) = gux[..padded].as_chunks::<G>();
+    let (y_groups, _) = guy[..padded].as_chunks::<G>();
+    for (out, (x, y)) in value_groups.iter_mut().zip(x_groups.iter().zip(y_groups)) {
+        for k in 0..G {
+            out[k] = value(x[k], y[k]);
+        }
+    }
+    let values: &'v [T] = values;
+    &values[..count]
+}
