@@ -711,7 +711,7 @@ fn independent_points(
 /// The window of the run's stream that the chunk starting at sample
 /// `start` reads ([`ChunkStream`]: D the emitters' dimensions per sample).
 fn chunk_stream(prepared: &[PreparedEmitter], seed: u64, start: u64) -> ChunkStream {
-    let dimensions: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
+    let dimensions = crate::strategy::sample_dimensions(prepared);
     ChunkStream::new(seed, dimensions as u64, start)
 }
 
@@ -763,7 +763,7 @@ fn sequence_points<S: SampleSequence>(
     mut visit: impl FnMut(usize, &[DVec2], &[DVec2]),
 ) {
     let n = (range.end - range.start) as usize;
-    let dims: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
+    let dims = crate::strategy::sample_dimensions(prepared);
     let mut points = vec![DVec2::ZERO; n * dims];
     for (request, block) in points.chunks_exact_mut(n).enumerate() {
         sequence.fill_2d(range.start, request as u64, block);

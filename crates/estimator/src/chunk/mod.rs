@@ -179,7 +179,7 @@ pub fn sequence_chunk<S: SampleSequence>(
     isa: Isa,
 ) -> ChunkResult {
     let n = (range.end - range.start) as usize;
-    let dims: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
+    let dims = crate::strategy::sample_dimensions(prepared);
     with_scratch(n, prepared.len(), |s| {
         // Every element is written by the fills below: no zeroing per chunk.
         s.px.resize(n * dims, 0.0);

@@ -234,7 +234,7 @@ pub fn sequence_chunk_f32<S: SampleSequence>(
     isa: Isa,
 ) -> ChunkResult {
     let n = (range.end - range.start) as usize;
-    let dims: usize = prepared.iter().map(|p| p.technique.dimensions()).sum();
+    let dims = crate::strategy::sample_dimensions(prepared);
     let firsts: Vec<usize> = prepared
         .iter()
         .scan(0usize, |d, p| {

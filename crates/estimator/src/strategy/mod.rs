@@ -72,6 +72,7 @@ pub use emitter_light::{EmitterLight, LightDirection};
 pub use emitter_projected::EmitterProjected;
 pub use fallback::TechniqueFallback;
 pub use occluded::{delta_irradiance_visible, OccludedEmitter};
+pub(crate) use prepared::sample_dimensions;
 pub use prepared::{PartHits, PreparedEmitter};
 pub use prepared_f32::{F32Fallback, FallbackReason, PreparedEmitterF32, F32_MAX_RELATIVE_ERROR};
 pub use store::Store;

@@ -54,6 +54,14 @@ pub struct PreparedEmitter {
 /// emitter's estimate (part 1 only for MIS: its light-sampled direction).
 pub type PartHits = [u64; 2];
 
+/// The 2-D points one sample draws for all of `prepared`: the sum of
+/// their techniques' dimensions (two for MIS, one otherwise), D in the
+/// chunk layouts (`chunk::ChunkStream`: emitter k's requests follow the
+/// points of the emitters before it).
+pub(crate) fn sample_dimensions(prepared: &[PreparedEmitter]) -> usize {
+    prepared.iter().map(|p| p.technique.dimensions()).sum()
+}
+
 impl PreparedEmitter {
     /// Prepares `emitter` at `receiver` for `strategy` (resolved for this
     /// emitter).
