@@ -52,6 +52,7 @@ mod polygon_from_origin;
 mod ray;
 mod solid_angle;
 mod sphere;
+mod sphere_from_outside;
 mod triangle;
 pub mod validate;
 
@@ -75,6 +76,7 @@ macro_rules! public_api {
             triangle_solid_angle,
         };
         pub use crate::sphere::$p::Sphere;
+        pub use crate::sphere_from_outside::$p::SphereFromOutside;
         pub use crate::triangle::$p::Triangle;
         pub use crate::validate::$p::unit_vector;
     };
