@@ -21,7 +21,7 @@
 //! for the same u.
 
 use glam::{DVec2, DVec3};
-use lambert_geometry::f64::PolygonFromOrigin;
+use lambert_geometry::f64::{PolygonFromOrigin, SphereFromOutside};
 use lambert_light::emitter::{Emitter, PolygonLight};
 use lambert_light::receiver::Receiver;
 use lambert_sampling::f64::{
@@ -134,6 +134,24 @@ impl PreparedEmitter {
                 }
                 // A local copy stays in registers (see `technique_batch`).
                 let cone = &cone.clone();
+                // From outside, the prepared test: the sphere's answers
+                // without its roots (`SphereFromOutside`), the same values
+                // as `radiance_toward`.
+                if let Some(seen) = SphereFromOutside::new(&e.sphere, p) {
+                    let radiance = e.radiance;
+                    return technique_batch(
+                        self,
+                        receiver,
+                        #[inline(always)]
+                        |w| if seen.hits(w) { radiance } else { 0.0 },
+                        #[inline(always)]
+                        |u| sample_sphere(cone, u),
+                        #[inline(always)]
+                        |w| cone.pdf(w),
+                        &block,
+                        out,
+                    );
+                }
                 technique_batch(
                     self,
                     receiver,

@@ -26,7 +26,7 @@
 //!   rather than divide by the density.
 
 use glam::{Vec2, Vec3};
-use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray};
+use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray, SphereFromOutside};
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
     sample_uniform_sphere, ConeCosine, DirectionSample, LightSample, LightSampler,
@@ -638,6 +638,16 @@ impl PreparedEmitterF32 {
                 )
             }
             Shape::Sphere(s) => {
+                // From outside, the prepared test: the sphere's answers
+                // without its roots (`SphereFromOutside`).
+                if let Some(seen) = SphereFromOutside::new(s, origin) {
+                    return self.technique_batch(
+                        #[inline(always)]
+                        |w| seen.hits(w),
+                        &block,
+                        out,
+                    );
+                }
                 let s = &{ *s };
                 self.technique_batch(
                     #[inline(always)]
