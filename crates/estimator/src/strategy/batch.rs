@@ -134,36 +134,30 @@ impl PreparedEmitter {
                 }
                 // A local copy stays in registers (see `technique_batch`).
                 let cone = &cone.clone();
+                let light = hoisted(
+                    #[inline(always)]
+                    |u| sample_sphere(cone, u),
+                );
+                let pdf = hoisted(
+                    #[inline(always)]
+                    |w| cone.pdf(w),
+                );
                 // From outside, the prepared test: the sphere's answers
                 // without its roots (`SphereFromOutside`), the same values
                 // as `radiance_toward`.
                 if let Some(seen) = SphereFromOutside::new(&e.sphere, p) {
                     let radiance = e.radiance;
-                    return technique_batch(
-                        self,
-                        receiver,
+                    let lit = hoisted(
                         #[inline(always)]
                         |w| if seen.hits(w) { radiance } else { 0.0 },
-                        #[inline(always)]
-                        |u| sample_sphere(cone, u),
-                        #[inline(always)]
-                        |w| cone.pdf(w),
-                        &block,
-                        out,
                     );
+                    return technique_batch(self, receiver, lit, light, pdf, &block, out);
                 }
-                technique_batch(
-                    self,
-                    receiver,
+                let lit = hoisted(
                     #[inline(always)]
                     |w| e.radiance_toward(p, w),
-                    #[inline(always)]
-                    |u| sample_sphere(cone, u),
-                    #[inline(always)]
-                    |w| cone.pdf(w),
-                    &block,
-                    out,
-                )
+                );
+                technique_batch(self, receiver, lit, light, pdf, &block, out)
             }
             (EmitterLight::Sky, Emitter::Sky(e)) => technique_batch(
                 self,
