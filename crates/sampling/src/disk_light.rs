@@ -401,11 +401,15 @@ macro_rules! disk_light_impl {
 
             /// The quadrant and in-quadrant area target for u₀.
             #[inline]
-            pub(crate) fn quadrant(&self, u0: Real) -> (usize, Real) {
+            pub(crate) fn quadrant(&self, u0: Real) -> (Real, Real) {
                 let four = 4.0 * u0.clamp(0.0, 1.0);
-                let q = (four.floor() as usize).min(3);
-                let f = four - q as Real;
-                let f = if q % 2 == 1 { 1.0 - f } else { f };
+                // In floating point, not as an integer: a loop over samples
+                // keeps it in vectors, where AVX2's saturating conversions
+                // run a lane at a time. `max` takes NaN to 0, as `as usize`
+                // did.
+                let q = four.floor().max(0.0).min(3.0);
+                let f = four - q;
+                let f = if (q == 1.0) | (q == 3.0) { 1.0 - f } else { f };
                 (q, f * self.quarter)
             }
 
@@ -422,12 +426,12 @@ macro_rules! disk_light_impl {
             /// parametric angle with sin τ = n, cos τ = m, and 1 − cos θ a
             /// fraction u₁ of its value on the rim.
             #[inline]
-            pub(crate) fn local_direction(&self, q: usize, n: Real, m: Real, u1: Real) -> V3 {
+            pub(crate) fn local_direction(&self, q: Real, n: Real, m: Real, u1: Real) -> V3 {
                 // The signs of quadrants 0 (+, +), 1 (−, +), 2 (−, −) and
                 // 3 (+, −), as selects: a `match` is a switch, which keeps
                 // a loop over many samples from vectorising.
-                let sx = if (q == 1) | (q == 2) { -1.0 } else { 1.0 };
-                let sy = if q >= 2 { -1.0 } else { 1.0 };
+                let sx = if (q == 1.0) | (q == 2.0) { -1.0 } else { 1.0 };
+                let sy = if q >= 2.0 { -1.0 } else { 1.0 };
                 let (px, py) = (self.a * m, self.b * n);
                 let re2 = px * px + py * py;
                 let re = re2.sqrt();

@@ -109,6 +109,58 @@ macro_rules! disk_table_impl {
             gauss: u8,
         }
 
+        /// One node per sample of a block, field by field (structure of
+        /// arrays), for the batch sampler's vector passes.
+        struct Lanes {
+            tau: [Real; TABLE_LANES],
+            sin: [Real; TABLE_LANES],
+            cos: [Real; TABLE_LANES],
+            sector: [Real; TABLE_LANES],
+            slope: [Real; TABLE_LANES],
+            gauss: [u8; TABLE_LANES],
+        }
+
+        impl Default for Lanes {
+            #[inline(always)]
+            fn default() -> Self {
+                let zero = [0.0; TABLE_LANES];
+                Lanes {
+                    tau: zero,
+                    sin: zero,
+                    cos: zero,
+                    sector: zero,
+                    slope: zero,
+                    gauss: [0; TABLE_LANES],
+                }
+            }
+        }
+
+        impl Lanes {
+            /// Lane `i` takes `node`.
+            #[inline(always)]
+            fn set(&mut self, i: usize, node: &Node) {
+                self.tau[i] = node.tau;
+                self.sin[i] = node.sin;
+                self.cos[i] = node.cos;
+                self.sector[i] = node.sector;
+                self.slope[i] = node.slope;
+                self.gauss[i] = node.gauss;
+            }
+
+            /// Lane `i`'s node.
+            #[inline(always)]
+            fn get(&self, i: usize) -> Node {
+                Node {
+                    tau: self.tau[i],
+                    sin: self.sin[i],
+                    cos: self.cos[i],
+                    sector: self.sector[i],
+                    slope: self.slope[i],
+                    gauss: self.gauss[i],
+                }
+            }
+        }
+
         /// [`DiskSolidAngle`] prepared for many samples at its point: the
         /// same map, 1/Ω per steradian over the spherical ellipse, with the
         /// azimuth found without Carlson's integrals.
@@ -339,37 +391,43 @@ macro_rules! disk_table_impl {
             ) {
                 let m = ux.len().min(uy.len()).min(TABLE_LANES);
                 let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
-                // Each sample's start node, copied into lanes (structure
-                // of arrays): the passes below then load their fields
-                // with plain vector loads. Indexing the table in them (a
-                // gather per field per pass) kept the last pass scalar in
-                // f64: 72 → 27 ns per direction in f64, 53 → 15 in f32,
-                // the same directions (a disk seen from the side, AVX-512).
-                let mut offset = [0.0 as Real; TABLE_LANES];
-                let mut sum = [0.0 as Real; TABLE_LANES];
-                let mut sins = [0.0 as Real; TABLE_LANES];
-                let mut coss = [0.0 as Real; TABLE_LANES];
-                let mut sectors = [0.0 as Real; TABLE_LANES];
-                let mut rules = [0u8; TABLE_LANES];
+                // Each sample's interval, then its two nodes' fields copied
+                // into lanes (structure of arrays): the other passes then
+                // load them with plain vector loads. Indexing the table in
+                // them (a gather per field per pass) kept the last pass
+                // scalar in f64: 72 → 27 ns per direction in f64, 53 → 15
+                // in f32, the same directions (a disk seen from the side,
+                // AVX-512). The copy is the only pass that indexes.
+                let mut targets = [0.0 as Real; TABLE_LANES];
+                let mut intervals = [0.0 as Real; TABLE_LANES];
                 for i in 0..m {
-                    let (j, x) = self.table_start(nodes, self.disk.quadrant(ux[i]).1);
-                    let a = &nodes[j.min(Self::INTERVALS - 1)];
-                    offset[i] = x;
-                    (sins[i], coss[i], sectors[i], rules[i]) = (a.sin, a.cos, a.sector, a.gauss);
+                    targets[i] = self.disk.quadrant(ux[i]).1;
+                    intervals[i] = self.interval(targets[i]);
                 }
-                let node = |i: usize| Node {
-                    sin: sins[i],
-                    cos: coss[i],
-                    sector: sectors[i],
-                    gauss: rules[i],
-                    ..Node::default()
-                };
+                let mut first = Lanes::default();
+                let mut last = Lanes::default();
+                for i in 0..m {
+                    let j = intervals[i] as usize;
+                    first.set(i, &nodes[j]);
+                    last.set(i, &nodes[j + 1]);
+                }
+                let mut offset = [0.0 as Real; TABLE_LANES];
+                for i in 0..m {
+                    offset[i] = Self::start_in(&first.get(i), &last.get(i), targets[i]);
+                }
+                let node = |i: usize| first.get(i);
+                let mut sum = [0.0 as Real; TABLE_LANES];
                 // Points beyond a sample's own rule add +0 (`GAUSS_PADDED`).
+                // Each point's nodes and weights are copied into lanes
+                // first, so the sum's loop loads them as vectors.
+                let (mut ys, mut ws) = ([0.0 as Real; TABLE_LANES], [0.0 as Real; TABLE_LANES]);
                 for k in 0..self.most_points.min(8) {
                     for i in 0..m {
-                        let a = &node(i);
-                        let (y, w) = GAUSS_PADDED[usize::from(a.gauss).min(8)][k];
-                        sum[i] += self.gauss_term(a, offset[i], y, w);
+                        let (y, w) = GAUSS_PADDED[usize::from(first.gauss[i]).min(8)][k];
+                        (ys[i], ws[i]) = (y as Real, w as Real);
+                    }
+                    for i in 0..m {
+                        sum[i] += self.gauss_term(&node(i), offset[i], ys[i], ws[i]);
                     }
                 }
                 for i in 0..m {
@@ -408,7 +466,7 @@ macro_rules! disk_table_impl {
                         let by = |g: u8| {
                             let sum: Real = GAUSS_LEGENDRE[g as usize]
                                 .iter()
-                                .map(|&(y, w)| self.gauss_term(a, x, y, w))
+                                .map(|&(y, w)| self.gauss_term(a, x, y as Real, w as Real))
                                 .sum();
                             a.sector + x * sum
                         };
@@ -430,8 +488,24 @@ macro_rules! disk_table_impl {
             /// allow; its sample is not answered by the table).
             #[inline(always)]
             fn table_start(&self, nodes: &[Node; Self::INTERVALS + 1], target: Real) -> (usize, Real) {
-                let j = ((target * self.per_interval) as usize).min(Self::INTERVALS - 1);
+                let j = self.interval(target) as usize;
                 let (a, b) = (&nodes[j], &nodes[j + 1]);
+                (j, Self::start_in(a, b, target))
+            }
+
+            /// The interval j of `target`: ⌊target J/K(π/2)⌋, at most J − 1
+            /// (0 for NaN), as a float: a loop over samples keeps it in
+            /// vectors (see [`DiskSolidAngle::quadrant`]).
+            #[inline(always)]
+            fn interval(&self, target: Real) -> Real {
+                let last = (Self::INTERVALS - 1) as Real;
+                (target * self.per_interval).floor().max(0.0).min(last)
+            }
+
+            /// The start x of the solve in the interval from node `a` to
+            /// node `b` ([`table_start`](Self::table_start)).
+            #[inline(always)]
+            fn start_in(a: &Node, b: &Node, target: Real) -> Real {
                 let dk = b.sector - a.sector;
                 let s = ((target - a.sector) / dk).clamp(0.0, 1.0);
                 let r = 1.0 - s;
@@ -440,15 +514,19 @@ macro_rules! disk_table_impl {
                 // max/min, not clamp, which panics on unordered or NaN
                 // bounds (degenerate geometry).
                 let x = (guess - a.tau).max(0.0).min(b.tau - a.tau);
-                (j, if a.gauss != 0 { x } else { 0.0 })
+                if a.gauss != 0 {
+                    x
+                } else {
+                    0.0
+                }
             }
 
             /// One point (y, w) of the rule for K(τⱼ + x) − K(τⱼ) on the
             /// interval starting at node `a`: w/(1 + cos θₑ(τⱼ + xy)).
             #[inline(always)]
-            fn gauss_term(&self, a: &Node, x: Real, y: f64, w: f64) -> Real {
-                let (sy, cy) = sin_cos_quarter(x * y as Real);
-                w as Real / (1.0 + self.disk.rim_cos(a.sin * cy + a.cos * sy))
+            fn gauss_term(&self, a: &Node, x: Real, y: Real, w: Real) -> Real {
+                let (sy, cy) = sin_cos_quarter(x * y);
+                w / (1.0 + self.disk.rim_cos(a.sin * cy + a.cos * sy))
             }
 
             /// From K(τⱼ + x) − K(τⱼ) = x·`sum`, one Halley step (as in
@@ -464,12 +542,18 @@ macro_rules! disk_table_impl {
                 let slope = 1.0 / (1.0 + c);
                 let curvature = -self.disk.ecc * n * m / c * slope * slope;
                 let denominator = 2.0 * slope * slope - f * curvature;
-                let (step, accept) = if denominator > 0.0 {
-                    (2.0 * f * slope / denominator, self.accept_halley)
+                let halley = denominator > 0.0;
+                let step = if halley {
+                    2.0 * f * slope / denominator
                 } else {
-                    (f / slope, self.accept_newton)
+                    f / slope
                 };
-                let answered = (a.gauss != 0) & (step.abs() <= accept);
+                // Both bounds compared, not one selected: the compiler made
+                // a selected bound a load indexed by each lane's choice,
+                // one lane at a time.
+                let short = (halley & (step.abs() <= self.accept_halley))
+                    | (!halley & (step.abs() <= self.accept_newton));
+                let answered = (a.gauss != 0) & short;
                 // A step not taken stays inside the polynomials' range.
                 let step = if answered { step } else { 0.0 };
                 let (sx, cx) = sin_cos_quarter(x - step);
@@ -493,7 +577,7 @@ macro_rules! disk_table_impl {
                 // K(τⱼ + x) by the interval's rule.
                 let mut sum = 0.0;
                 for &(y, w) in GAUSS_LEGENDRE[a.gauss as usize] {
-                    sum += self.gauss_term(a, x, y, w);
+                    sum += self.gauss_term(a, x, y as Real, w as Real);
                 }
                 match self.halley_finish(a, x, sum, target) {
                     (n, m, true) => (n, m, 0),

@@ -200,6 +200,14 @@ macro_rules! hashes {
             w.extend([s.pdf.bits(), s.distance.bits()]);
             v2(w, disk_solid_angle.invert(s.direction));
         });
+        // Its tabulated form (whose batch form's own test compares the
+        // batch with it, bit for bit).
+        let table = TabulatedDiskSolidAngle::new(disk_solid_angle);
+        run("disk_solid_angle_table", &mut |u, w| {
+            let s = table.sample(u);
+            v3(w, s.direction);
+            w.push(s.pdf.bits());
+        });
         let hexagon: Vec<V3> = (0..6)
             .map(|k| {
                 let t = k as f64 * std::f64::consts::PI / 3.0;
@@ -268,6 +276,7 @@ const EXPECTED: &[(&str, u64)] = &[
     ("f32/disk_area_light", 0x3978e516865373b4),
     ("f32/disk_light", 0x970fac7a65b8bdc8),
     ("f32/disk_solid_angle", 0x2e1aa6f557314583),
+    ("f32/disk_solid_angle_table", 0x391071356261e023),
     ("f32/parallelogram_area", 0xd1417b47dc5947d0),
     ("f32/polygon_area_light", 0xd3be571cbd23d44c),
     ("f32/polygon_light", 0x14c93da074557b43),
@@ -300,6 +309,7 @@ const EXPECTED: &[(&str, u64)] = &[
     ("f64/disk_area_light", 0xfd4099d27fb91cc2),
     ("f64/disk_light", 0x11ced86573913df9),
     ("f64/disk_solid_angle", 0xd95e2f3c60193ff3),
+    ("f64/disk_solid_angle_table", 0x09ccbbaf24100c24),
     ("f64/parallelogram_area", 0x12c9cfd2eec84658),
     ("f64/polygon_area_light", 0x060b0c4dce5847eb),
     ("f64/polygon_light", 0x748d46b113ee480f),
