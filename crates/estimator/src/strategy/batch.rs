@@ -649,6 +649,10 @@ fn disk_table_batch(
         (block.ux, block.uy)
     };
     let disk = &{ disk };
+    // The density's sampler copied, not read through `disk`: MIS reads it
+    // for every cosine direction, and through the reference its loop stayed
+    // scalar (as the f32 kernels' did).
+    let plain = &{ *disk.sampler() };
     let mut directions = [[0.0f64; DISK_TABLE_BATCH]; 3];
     let mut hits = [0u64; 2];
     let mut start = 0;
@@ -678,7 +682,7 @@ fn disk_table_batch(
             #[inline(always)]
             |i, _| disk_table_direction(disk, DVec3::new(dx[i], dy[i], dz[i])),
             #[inline(always)]
-            |w| disk.pdf(w),
+            |w| plain.pdf(w),
             &part,
             &mut out[range],
         )?;

@@ -985,31 +985,38 @@ impl PreparedEmitterF32 {
                 block,
                 out,
             ),
-            Light::Cap(frame, cone, _) => self.mis_loop(
-                h,
-                sees,
-                #[inline(always)]
-                |w| cone.pdf(frame.to_local(w)),
-                #[inline(always)]
-                |u| (frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle()),
-                block,
-                out,
-            ),
-            Light::Sphere(s, _) => self.mis_loop(
-                h,
-                sees,
-                #[inline(always)]
-                |w| s.pdf(w),
-                #[inline(always)]
-                |u| {
-                    (
-                        s.frame().from_local(s.cone().sample(u)),
-                        1.0 / s.solid_angle(),
-                    )
-                },
-                block,
-                out,
-            ),
+            Light::Cap(frame, cone, _) => {
+                // Copies, not references into `self` (as in `mis_loop`).
+                let (frame, cone) = (&{ *frame }, &{ *cone });
+                self.mis_loop(
+                    h,
+                    sees,
+                    #[inline(always)]
+                    |w| cone.pdf(frame.to_local(w)),
+                    #[inline(always)]
+                    |u| (frame.from_local(cone.sample(u)), 1.0 / cone.solid_angle()),
+                    block,
+                    out,
+                )
+            }
+            Light::Sphere(s, _) => {
+                let s = &{ *s };
+                self.mis_loop(
+                    h,
+                    sees,
+                    #[inline(always)]
+                    |w| s.pdf(w),
+                    #[inline(always)]
+                    |u| {
+                        (
+                            s.frame().from_local(s.cone().sample(u)),
+                            1.0 / s.solid_angle(),
+                        )
+                    },
+                    block,
+                    out,
+                )
+            }
             Light::Polygon(p) => {
                 // As in `light_batch`: one triangle, a rectangle or a
                 // fan in fixed lanes inline.
@@ -1040,6 +1047,8 @@ impl PreparedEmitterF32 {
                 // `mis_loop` does: the same sums, to the bit.
                 let (frame, normal, lit) = (&{ self.frame }, self.normal, self.lit);
                 let pdf = 1.0 / d.solid_angle();
+                // The density's sampler copied, not read through `d`.
+                let plain = &{ *d.sampler() };
                 let mut lights = [0.0f32; DISK_BATCH];
                 disk_directions(
                     d,
@@ -1077,7 +1086,7 @@ impl PreparedEmitterF32 {
                                     #[inline(always)]
                                     |w| sees(w),
                                     #[inline(always)]
-                                    |w| d.pdf(w),
+                                    |w| plain.pdf(w),
                                     u,
                                 );
                                 [cosine, v.x]
@@ -1142,7 +1151,9 @@ impl PreparedEmitterF32 {
         block: &Block<'_>,
         out: &mut [f64],
     ) -> PartHits {
-        let (frame, normal, radiance, lit) = (&self.frame, self.normal, self.radiance, self.lit);
+        // Copies, not references (see `technique_batch`).
+        let (frame, normal, radiance, lit) =
+            (&{ self.frame }, self.normal, self.radiance, self.lit);
         accumulate(
             radiance,
             block,
