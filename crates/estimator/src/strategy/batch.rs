@@ -169,18 +169,24 @@ impl PreparedEmitter {
                 &block,
                 out,
             ),
-            (EmitterLight::Cap(frame, cone), Emitter::SkyCap(e)) => technique_batch(
-                self,
-                receiver,
-                #[inline(always)]
-                |w| e.radiance_toward(w),
-                #[inline(always)]
-                |u| sample_cap(frame, cone, u),
-                #[inline(always)]
-                |w| cone.pdf(frame.to_local(w)),
-                &block,
-                out,
-            ),
+            (EmitterLight::Cap(frame, cone), Emitter::SkyCap(e)) => {
+                // Local copies, as for the sphere: read through references
+                // into `self`, every technique's loop stayed scalar (f64
+                // light sampling of a cap 17 ns a sample, f32 2.1).
+                let (frame, cone, e) = (&{ *frame }, &{ *cone }, &{ *e });
+                technique_batch(
+                    self,
+                    receiver,
+                    #[inline(always)]
+                    |w| e.radiance_toward(w),
+                    #[inline(always)]
+                    |u| sample_cap(frame, cone, u),
+                    #[inline(always)]
+                    |w| cone.pdf(frame.to_local(w)),
+                    &block,
+                    out,
+                )
+            }
             (EmitterLight::Polygon(poly), Emitter::Polygon(e)) => {
                 // Light sampling and MIS with the light sampler specialised
                 // to what the polygon looks like from here, inline in the
