@@ -454,4 +454,16 @@ mod tests {
         StudyConfig::builtin().validate().unwrap();
         StudyConfig::quick().validate().unwrap();
     }
+
+    /// The kernel sweep the README points to loads: eight emitter scenes
+    /// × six strategies × two precisions at one N, one row each.
+    #[test]
+    fn kernel_sweep_file_is_valid() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/studies/kernel-sweep.toml");
+        let c = StudyConfig::load(&path).unwrap();
+        c.validate().unwrap();
+        assert_eq!(c.scenes.len(), 8);
+        assert_eq!(crate::plan::plan(&c).len(), 8 * 6 * 2);
+    }
 }
