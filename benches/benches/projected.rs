@@ -269,8 +269,9 @@ fn sampling(c: &mut Criterion) {
     );
     // The same directions BATCH at a time by the table's batch, in the
     // process's instruction set (what the estimator's light and MIS loops
-    // use); the random numbers are drawn into arrays first.
-    macro_rules! disk_batch {
+    // use, and its projected loop for the square); the random numbers are
+    // drawn into arrays first.
+    macro_rules! table_batch {
         ($name:expr, $table:expr, $next:ident, $zero:expr) => {
             g.bench_function($name, |b| {
                 let (mut r, n) = (rng(), BATCH as usize);
@@ -292,13 +293,25 @@ fn sampling(c: &mut Criterion) {
             });
         };
     }
-    disk_batch!(
+    table_batch!(
+        "projected square (non-central) tabulated batch f32",
+        toff32,
+        next_u32x2,
+        0.0f32
+    );
+    table_batch!(
+        "projected square (non-central) tabulated batch f64",
+        toff64,
+        next_u64x2,
+        0.0f64
+    );
+    table_batch!(
         "disk solid angle tabulated batch f32",
         table32,
         next_u32x2,
         0.0f32
     );
-    disk_batch!(
+    table_batch!(
         "disk solid angle tabulated batch f64",
         table64,
         next_u64x2,

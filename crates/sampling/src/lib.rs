@@ -25,6 +25,7 @@
 
 mod area;
 mod area_light;
+mod atan;
 mod carlson;
 mod cone;
 mod cone_cosine;
@@ -43,6 +44,7 @@ mod polygon_area_fan;
 mod polygon_light;
 mod projected_cap;
 mod projected_polygon;
+mod projected_sector;
 mod projected_sphere;
 mod projected_table;
 mod projected_whole;
@@ -73,6 +75,7 @@ macro_rules! public_api {
         pub use crate::area_light::$p::{
             DiskAreaSampler, PolygonAreaSampler, SphereAreaSampler, TriangleAreaSampler,
         };
+        pub use crate::atan::$p::atan2;
         pub use crate::cone::$p::UniformCone;
         pub use crate::cone_cosine::$p::ConeCosine;
         pub use crate::direction_sample::$p::DirectionSample;

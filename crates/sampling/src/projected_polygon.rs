@@ -5,7 +5,8 @@ macro_rules! projected_polygon_impl {
         use crate::error::SamplingError;
         use crate::light_sample::$p::LightSample;
         use crate::light_sampler::$p::{shading_normal, LightSampler};
-        use crate::segment::$p::{v_minus_sin, CBRT_EPSILON};
+        use crate::projected_sector::$p::{cross2, cut as cut_edge, Corner, Sector};
+        use crate::segment::$p::CBRT_EPSILON;
         use crate::trig::$p::sin_cos;
         use lambert_geometry::precision::$p::{wide3, Real, ONE_MINUS_EPSILON, V2, V3};
         use lambert_geometry::$p::{ConvexPolygon, Frame};
@@ -18,45 +19,6 @@ macro_rules! projected_polygon_impl {
         /// No inner edge in a sector (the zenith lies on the polygon's
         /// boundary).
         const NONE: usize = usize::MAX;
-
-        /// z of the cross product of the xy parts.
-        #[inline(always)]
-        fn cross2(a: V3, b: V3) -> Real {
-            a.x * b.y - a.y * b.x
-        }
-
-        /// Q̂₁ − Q̂₂ from the exact difference `diff` = Q₁ − Q₂, the
-        /// positions and their lengths (see the type's docs).
-        #[inline(always)]
-        fn unit_diff(diff: V3, p1: V3, p2: V3, l1: Real, l2: Real) -> V3 {
-            let dl = diff.dot(p1 + p2) / (l1 + l2);
-            (diff - p2 * (dl / l2)) / l1
-        }
-
-        /// g(Θ) = Θ/sin Θ − 1 for the arc between unit directions a and
-        /// a + d (d = b − a), and (a × b)_z.
-        #[inline(always)]
-        fn arc_correction(a: V3, d: V3) -> Real {
-            let c = a.cross(d);
-            let s = c.length();
-            if !(s > 0.0) {
-                return 0.0;
-            }
-            let cos = 1.0 - 0.5 * d.length_squared();
-            // s = sin Θ already (a unit): g = (Θ − sin Θ)/sin Θ.
-            let theta = s.atan2(cos);
-            v_minus_sin(theta) / s * c.z
-        }
-
-        /// A corner: a point of the planar polygon, as its offset from a
-        /// reference vertex, its position, length and unit direction.
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        struct Corner {
-            offset: V3,
-            position: V3,
-            length: Real,
-            direction: V3,
-        }
 
         /// Projected-solid-angle (cosine-weighted) sampling of a convex planar
         /// polygon light, clipped to the receiver's hemisphere: density
@@ -107,7 +69,8 @@ macro_rules! projected_polygon_impl {
         ///   spherical triangle or rectangle.
         #[doc = concat!("  For many samples from one point, [`TabulatedProjectedPolygon`](crate::", stringify!($p), "::TabulatedProjectedPolygon)")]
         ///   starts each solve from a tabulated inverse and evaluates the area
-        ///   about half as often.
+        ///   about half as often, and its `sample_directions` draws them in
+        ///   vectorised passes, a sector at a time.
         ///
         /// The one weakness we found in Peters' formulation is numerical: away from
         /// the zenith a sector's area is the difference of two elliptic-sector areas
@@ -130,7 +93,9 @@ macro_rules! projected_polygon_impl {
         /// (the meridian edges contribute nothing: their cross products are
         /// horizontal). The first term is the triple product of the diagonals, of
         /// the size of the result; the corrections are smaller by Θ², so nothing
-        /// cancels. The corners are points of the planar polygon (the meridian
+        /// cancels (Θ comes from this crate's branch-free
+        #[doc = concat!("[`atan2`](crate::", stringify!($p), "::atan2), which the batch's loops can inline).")]
+        /// The corners are points of the planar polygon (the meridian
         /// plane through φ cut with an edge), kept as offsets from the sector's
         /// vertex so that differences of nearby unit directions, Q̂₁ − Q̂₂ =
         /// [(Q₁ − Q₂) − Q̂₂(|Q₁| − |Q₂|)]/|Q₁| with |Q₁| − |Q₂| =
@@ -367,18 +332,8 @@ macro_rules! projected_polygon_impl {
                     shape_end: [0.0; CAP],
                     accept: [0.0; CAP],
                     azimuth: [V3::ZERO; CAP],
-                    outer_corner: [Corner {
-                        offset: V3::ZERO,
-                        position: V3::ZERO,
-                        length: 0.0,
-                        direction: V3::ZERO,
-                    }; CAP],
-                    inner_corner: [Corner {
-                        offset: V3::ZERO,
-                        position: V3::ZERO,
-                        length: 0.0,
-                        direction: V3::ZERO,
-                    }; CAP],
+                    outer_corner: [Corner::ZENITH; CAP],
+                    inner_corner: [Corner::ZENITH; CAP],
                     projected_solid_angle: 0.0,
                     area_scale: 0.0,
                 };
@@ -481,52 +436,6 @@ macro_rules! projected_polygon_impl {
                 cross2(g, d).atan2(g.x * d.x + g.y * d.y)
             }
 
-            /// The corner where the meridian plane at azimuth δ past the
-            /// start vertex `a` cuts edge `e`; `d` is that azimuth's unit
-            /// direction and `sin_d` = sin δ.
-            #[inline]
-            fn corner(&self, a: usize, d: V3, sin_d: Real, e: usize) -> Corner {
-                let s = e;
-                let t = (e + 1) % self.count;
-                let pa = self.position[a];
-                let ra = (pa.x * pa.x + pa.y * pa.y).sqrt();
-                let fs = self.offset[s] - self.offset[a];
-                let ft = self.offset[t] - self.offset[a];
-                // cross(d, P) relative to the start vertex.
-                let cs = -ra * sin_d + cross2(d, fs);
-                let ct = -ra * sin_d + cross2(d, ft);
-                let denom = cs - ct;
-                // The cut from the end nearer to the plane: u ≈ 1 would lose
-                // 1 − u's relative precision (and the corner's).
-                let offset = if denom == 0.0 {
-                    fs
-                } else if cs.abs() <= ct.abs() {
-                    fs + (ft - fs) * (cs / denom).clamp(0.0, 1.0)
-                } else {
-                    ft + (fs - ft) * (-ct / denom).clamp(0.0, 1.0)
-                };
-                let position = pa + offset;
-                let length = position.length();
-                Corner {
-                    offset,
-                    position,
-                    length,
-                    direction: position / length,
-                }
-            }
-
-            /// Q̂₁ − Q̂₂ for two corners (offsets from the same vertex).
-            #[inline(always)]
-            fn corner_diff(c1: &Corner, c2: &Corner) -> V3 {
-                unit_diff(
-                    c1.offset - c2.offset,
-                    c1.position,
-                    c2.position,
-                    c1.length,
-                    c2.length,
-                )
-            }
-
             /// Non-central case: sectors between consecutive vertex azimuths.
             fn prepare_sectors(&mut self) {
                 let n = self.count;
@@ -608,17 +517,20 @@ macro_rules! projected_polygon_impl {
                     self.inner[k] = inner;
                     self.width[k] = width;
                     self.azimuth[k] = da;
-                    self.outer_corner[k] = self.corner(a, da, 0.0, outer);
+                    let radius = (pa.x * pa.x + pa.y * pa.y).sqrt();
+                    self.outer_corner[k] = cut_edge(pa, radius, da, 0.0, self.edge_ends(a, outer));
                     if inner != NONE {
-                        self.inner_corner[k] = self.corner(a, da, 0.0, inner);
+                        self.inner_corner[k] =
+                            cut_edge(pa, radius, da, 0.0, self.edge_ends(a, inner));
                     }
-                    let (area, scale, ib, ob) = self.sector_area_and_scale(k, width);
+                    let sector = self.sector(k);
+                    let (ib, ob, _) = sector.corners(width);
+                    let (area, scale) = sector.area_and_scale::<false>(&ib, &ob);
                     self.area_scale += scale;
-                    let (oa, ia) = (self.outer_corner[k], self.inner_corner[k]);
-                    let ia = if inner != NONE { ia } else { Self::zenith() };
+                    let (oa, ia) = (sector.outer_start, sector.inner_start);
                     let mean = if area > 0.0 { width / area } else { 0.0 };
-                    let start_slope = (0.5 * self.height_gap(k, &ia, &oa) * mean).clamp(0.0, 3.0);
-                    let end_slope = (0.5 * self.height_gap(k, &ib, &ob) * mean).clamp(0.0, 3.0);
+                    let start_slope = (0.5 * sector.height_gap(&ia, &oa) * mean).clamp(0.0, 3.0);
+                    let end_slope = (0.5 * sector.height_gap(&ib, &ob) * mean).clamp(0.0, 3.0);
                     self.shape[k] = start_slope;
                     self.shape_end[k] = end_slope;
                     self.accept[k] = 0.25 * CBRT_EPSILON * width;
@@ -629,93 +541,65 @@ macro_rules! projected_polygon_impl {
                 self.sectors = sectors;
             }
 
-            /// The zenith as a corner (the inner boundary when the zenith
-            /// lies on the polygon's boundary).
+            /// The ends of edge `e` as offsets from vertex `a`.
             #[inline(always)]
-            fn zenith() -> Corner {
-                Corner {
-                    offset: V3::ZERO,
-                    position: V3::Z,
-                    length: 1.0,
-                    direction: V3::Z,
-                }
+            fn edge_ends(&self, a: usize, e: usize) -> (V3, V3) {
+                let t = (e + 1) % self.count;
+                (self.offset[e] - self.offset[a], self.offset[t] - self.offset[a])
             }
 
-            /// The area of non-central sector k from its start to azimuth δ
-            /// past it, and the inner and outer corners at δ.
+            /// Non-central sector k, copied out (see [`Sector`]).
             #[inline]
-            fn sector_area(&self, k: usize, delta: Real) -> (Real, Corner, Corner) {
-                let (area, _, i, o) = self.sector_area_and_scale(k, delta);
-                (area, i, o)
-            }
-
-            /// The inner and outer corners of sector k at azimuth δ past its
-            /// start (the zenith for a missing inner edge).
-            #[inline]
-            fn corners(&self, k: usize, delta: Real) -> (Corner, Corner) {
-                let (a, da) = (self.start[k], self.azimuth[k]);
-                let (sin_d, cos_d) = sin_cos(delta);
-                let d = da * cos_d + V3::new(-da.y, da.x, 0.0) * sin_d;
-                let o = self.corner(a, d, sin_d, self.outer[k]);
-                let i = if self.inner[k] != NONE {
-                    self.corner(a, d, sin_d, self.inner[k])
-                } else {
-                    Self::zenith()
-                };
-                (i, o)
-            }
-
-            /// [`Self::sector_area`] and the size of the terms it sums
-            /// (|diagonal₁||diagonal₂|/2), which bounds its rounding error.
-            #[inline]
-            fn sector_area_and_scale(&self, k: usize, delta: Real) -> (Real, Real, Corner, Corner) {
-                let (i, o) = self.corners(k, delta);
-                let oa = self.outer_corner[k];
-                let has_inner = self.inner[k] != NONE;
-                let ia = if has_inner {
-                    self.inner_corner[k]
-                } else {
-                    Self::zenith()
-                };
-                let diff = |c1: &Corner, c2: &Corner| {
-                    if has_inner {
-                        Self::corner_diff(c1, c2)
+            pub(crate) fn sector(&self, k: usize) -> Sector {
+                let a = self.start[k];
+                let pa = self.position[a];
+                let (outer, inner) = (self.outer[k], self.inner[k]);
+                let has_inner = inner != NONE;
+                let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
+                Sector {
+                    start: pa,
+                    start_radius: (pa.x * pa.x + pa.y * pa.y).sqrt(),
+                    azimuth: self.azimuth[k],
+                    outer_ends: self.edge_ends(a, outer),
+                    inner_ends: if has_inner {
+                        self.edge_ends(a, inner)
                     } else {
-                        c1.direction - c2.direction
-                    }
-                };
-                let d1 = diff(&o, &ia);
-                let d2 = diff(&i, &oa);
-                let main = (d1.cross(d2)).z;
-                let outer_term = arc_correction(oa.direction, Self::corner_diff(&o, &oa));
-                let inner_term = if has_inner {
-                    arc_correction(i.direction, Self::corner_diff(&ia, &i))
-                } else {
-                    0.0
-                };
-                let scale = 0.5 * (d1.length() * d2.length() + outer_term.abs() + inner_term.abs());
-                (0.5 * (main + outer_term + inner_term).max(0.0), scale, i, o)
-            }
-
-            /// z_i² − z_o² (≥ 0) for the corners at one azimuth, without
-            /// cancellation.
-            #[inline(always)]
-            fn height_gap(&self, k: usize, i: &Corner, o: &Corner) -> Real {
-                let dz = if self.inner[k] != NONE {
-                    Self::corner_diff(i, o).z
-                } else {
-                    1.0 - o.direction.z
-                };
-                (dz * (i.direction.z + o.direction.z)).max(0.0)
+                        (V3::ZERO, V3::ZERO)
+                    },
+                    has_inner,
+                    outer_start: self.outer_corner[k],
+                    inner_start: if has_inner {
+                        self.inner_corner[k]
+                    } else {
+                        Corner::ZENITH
+                    },
+                    outer_normal: self.edge_normal[outer],
+                    inner_normal: if has_inner {
+                        self.edge_normal[inner]
+                    } else {
+                        V3::ZERO
+                    },
+                    width: self.width[k],
+                    before,
+                    accept: self.accept[k],
+                    size: self.cumulative[k] - before,
+                    shape: self.shape[k],
+                    shape_end: self.shape_end[k],
+                }
             }
 
             /// The sector and the area target within it for u₀.
             #[inline]
             pub(crate) fn locate(&self, u0: Real) -> (usize, Real) {
                 let target = u0.clamp(0.0, 1.0) * self.projected_solid_angle;
+                // The first sector whose cumulative area exceeds the target
+                // (the last if none): as the cumulative areas never
+                // decrease, the number of sectors before the last that do
+                // not, counted without a branch (the sector is random, and
+                // a search loop's exit mispredicted).
                 let mut k = 0;
-                while k + 1 < self.sectors && self.cumulative[k] <= target {
-                    k += 1;
+                for s in 0..self.sectors.saturating_sub(1).min(CAP) {
+                    k += usize::from(self.cumulative[s] <= target);
                 }
                 let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
                 let size = self.cumulative[k] - before;
@@ -729,8 +613,10 @@ macro_rules! projected_polygon_impl {
                 if self.central {
                     (self.central_local(k, target, u.y), 0)
                 } else {
-                    let (delta, i, o, steps) = self.solve(k, target);
-                    (self.sector_local(k, delta, &i, &o, u.y), steps)
+                    let sector = self.sector(k);
+                    let guess = sector.initial_guess(target);
+                    let (_, i, o, d, steps) = sector.solve_from(target, guess, Self::MAX_ITERATIONS);
+                    (sector.local(d, &i, &o, u.y), steps)
                 }
             }
 
@@ -748,32 +634,35 @@ macro_rules! projected_polygon_impl {
                 (self.sectors, self.width[k], self.cumulative[k] - before)
             }
 
-            /// The light sample for area `target` in non-central sector k
+            /// The light sample for area `target` in non-central `sector`
             /// and u₁, solving from the first azimuth `delta`, and the
             /// Newton steps taken.
             #[inline]
             pub(crate) fn sample_sector(
                 &self,
-                k: usize,
+                sector: &Sector,
                 target: Real,
                 delta: Real,
                 u1: Real,
             ) -> (LightSample, usize) {
-                let (delta, i, o, steps) = self.solve_from(k, target, delta);
-                (self.light_sample(self.sector_local(k, delta, &i, &o, u1)), steps)
+                let (_, i, o, d, steps) = sector.solve_from(target, delta, Self::MAX_ITERATIONS);
+                (self.light_sample(sector.local(d, &i, &o, u1)), steps)
             }
 
             /// The azimuth δ past the start of non-central sector k where
             /// its area is `target`, and the area's slope dA/dδ there.
             pub(crate) fn root_and_slope(&self, k: usize, target: Real) -> (Real, Real) {
-                let (delta, i, o, _) = self.solve(k, target);
-                (delta, 0.5 * self.height_gap(k, &i, &o))
+                let sector = self.sector(k);
+                let guess = sector.initial_guess(target);
+                let (delta, i, o, _, _) = sector.solve_from(target, guess, Self::MAX_ITERATIONS);
+                (delta, 0.5 * sector.height_gap(&i, &o))
             }
 
             /// The slope dA/dδ of non-central sector k's area at δ.
             pub(crate) fn slope_at(&self, k: usize, delta: Real) -> Real {
-                let (i, o) = self.corners(k, delta);
-                0.5 * self.height_gap(k, &i, &o)
+                let sector = self.sector(k);
+                let (i, o, _) = sector.corners(delta);
+                0.5 * sector.height_gap(&i, &o)
             }
 
             /// The local direction in central sector k at area `target`
@@ -796,29 +685,33 @@ macro_rules! projected_polygon_impl {
                 V3::new(p.x, p.y, z2.sqrt())
             }
 
-            /// The local direction in non-central sector k at azimuth δ past
-            /// its start (corners `i`, `o` there), a fraction u₁ of the
-            /// projected area from the inner to the outer edge.
-            #[inline]
-            fn sector_local(&self, k: usize, delta: Real, i: &Corner, o: &Corner, u1: Real) -> V3 {
-                let u1 = u1.clamp(0.0, 1.0);
-                let gap = self.height_gap(k, i, o);
-                let zi2 = i.direction.z * i.direction.z;
-                let ri2 = i.direction.x * i.direction.x + i.direction.y * i.direction.y;
-                let r2 = ri2 + u1 * gap;
-                let z2 = (zi2 - u1 * gap).max(0.0);
-                let da = self.azimuth[k];
-                let (sin_d, cos_d) = sin_cos(delta);
-                let d = da * cos_d + V3::new(-da.y, da.x, 0.0) * sin_d;
-                let r = r2.sqrt();
-                V3::new(d.x * r, d.y * r, z2.sqrt())
+            /// The receiver's frame (local z its normal).
+            #[inline(always)]
+            pub(crate) fn frame(&self) -> Frame {
+                self.frame
+            }
+
+            /// The world direction of the local direction `l` of a sample,
+            /// raised to cos θ ≥ 4ε (see the type's docs) first.
+            #[inline(always)]
+            pub(crate) fn world_direction(frame: &Frame, mut l: V3) -> V3 {
+                l.z = l.z.max(4.0 * Real::EPSILON);
+                frame.from_local(l)
+            }
+
+            /// The density [`ProjectedPolygon::sample`] gives its direction
+            /// `w`: cos θ/Ω⊥ (cos θ = n·w), or 0 for cos θ ≤ 0. Unlike
+            /// [`ProjectedPolygon::pdf`] it does not test whether `w`
+            /// points into the polygon (a sample's direction does).
+            #[inline(always)]
+            pub fn sample_density(&self, w: V3) -> Real {
+                self.pdf_of(self.frame.z.dot(w))
             }
 
             /// The light sample of the local direction `l`.
             #[inline]
-            fn light_sample(&self, mut l: V3) -> LightSample {
-                l.z = l.z.max(4.0 * Real::EPSILON);
-                let w = self.frame.from_local(l);
+            fn light_sample(&self, l: V3) -> LightSample {
+                let w = Self::world_direction(&self.frame, l);
                 let distance = self.plane_offset / self.plane_normal.dot(w);
                 LightSample {
                     direction: w,
@@ -826,150 +719,6 @@ macro_rules! projected_polygon_impl {
                     point: self.reference + w * distance,
                     distance,
                 }
-            }
-
-            /// δ with A(δ) = target in non-central sector k (Newton's
-            /// method in a bisection bracket), the corners there, and the
-            /// steps taken.
-            #[inline]
-            fn solve(&self, k: usize, target: Real) -> (Real, Corner, Corner, usize) {
-                self.solve_from(k, target, self.initial_guess(k, target))
-            }
-
-            /// The first δ of [`Self::solve`] for area `target` in sector k.
-            #[inline]
-            pub(crate) fn initial_guess(&self, k: usize, target: Real) -> Real {
-                let width = self.width[k];
-                let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
-                let size = self.cumulative[k] - before;
-                // Initial guess from a quadratic model of A/A_k in x = δ/Δ,
-                // fitted at the nearer end: τ ≈ αx + (1 − α)x² with α the
-                // start slope over the mean slope, or, for τ > ½, the same in
-                // 1 − x and 1 − τ with the end slope β. Exact for a sector
-                // whose radial thickness varies linearly, such as one that
-                // starts or ends at a vertex where its inner and outer edges
-                // meet (a zero slope there, i.e. a double root that Newton's
-                // method on A itself would approach only linearly).
-                let fraction = if size > 0.0 {
-                    (target / size).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let quadratic = |slope: Real, tau: Real| {
-                    let slope = slope.min(2.0);
-                    let root = (slope * slope + 4.0 * (1.0 - slope) * tau).max(0.0).sqrt();
-                    if slope + root > 0.0 {
-                        (2.0 * tau / (slope + root)).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    }
-                };
-                let x = if fraction <= 0.5 {
-                    quadratic(self.shape[k], fraction)
-                } else {
-                    1.0 - quadratic(self.shape_end[k], 1.0 - fraction)
-                };
-                width * x.clamp(0.0, 1.0)
-            }
-
-            /// [`Self::solve`] from the first δ `delta` ∈ [0, Δ].
-            #[inline]
-            fn solve_from(
-                &self,
-                k: usize,
-                target: Real,
-                delta: Real,
-            ) -> (Real, Corner, Corner, usize) {
-                let width = self.width[k];
-                let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
-                let (mut lo, mut hi) = (0.0 as Real, width);
-                // Not clamp: a NaN width must not panic.
-                let mut delta = delta.max(0.0).min(width);
-                let mut steps = 0;
-                loop {
-                    let (area, scale, i, o) = self.sector_area_and_scale(k, delta);
-                    let f = area - target;
-                    // Converged: the residual is at the rounding floor of the
-                    // area's evaluation (a few ε times its terms) and of the
-                    // target (formed as u₀Ω⊥ minus the sectors before).
-                    let floor = 8.0 * Real::EPSILON * (scale + target + before);
-                    if f.abs() <= floor || steps >= Self::MAX_ITERATIONS {
-                        return (delta, i, o, steps);
-                    }
-                    steps += 1;
-                    if f > 0.0 {
-                        hi = delta;
-                    } else {
-                        lo = delta;
-                    }
-                    let slope = 0.5 * self.height_gap(k, &i, &o);
-                    // Halley's correction with A″ = ½ d(r_o² − r_i²)/dφ from
-                    // the edges' ellipses (cubic convergence: one evaluation
-                    // of A fewer than Newton's from the same guess).
-                    let curvature = self.curvature(k, &o);
-                    let denominator = 2.0 * slope * slope - f * curvature;
-                    let halley = denominator > 0.0;
-                    let step = if halley {
-                        2.0 * f * slope / denominator
-                    } else {
-                        f / slope
-                    };
-                    if slope > 0.0 && step.abs() <= 4.0 * Real::EPSILON * delta.abs() {
-                        return (delta, i, o, steps);
-                    }
-                    let next = delta - step;
-                    // A Halley step of size s leaves an error of about
-                    // s³/Δ² (cubic convergence, A varying on the sector's
-                    // scale Δ), a Newton step s²/Δ: below ¼ε^{1/3}Δ resp.
-                    // √ε Δ that is ≲ ε Δ, so the step is taken without
-                    // evaluating A again (the corners are all the sample
-                    // needs). Tested against the converged root.
-                    let accept = if halley {
-                        self.accept[k]
-                    } else {
-                        Real::EPSILON.sqrt() * width
-                    };
-                    if slope > 0.0 && next > lo && next < hi && step.abs() <= accept {
-                        let (i, o) = self.corners(k, next);
-                        return (next, i, o, steps);
-                    }
-                    delta = if slope > 0.0 && next > lo && next < hi {
-                        next
-                    } else {
-                        0.5 * (lo + hi)
-                    };
-                    if hi - lo <= 4.0 * Real::EPSILON * hi {
-                        let (_, i, o) = self.sector_area(k, delta);
-                        return (delta, i, o, steps);
-                    }
-                }
-            }
-
-            /// A″(δ) = ½ d(r_o² − r_i²)/dφ in sector k at the azimuth of the
-            /// outer corner `o`: on an edge's great circle of unit normal m̂,
-            /// r² = μ²/(μ² + (m·d)²) (μ = |m̂_z|, m = m̂_xy, d the unit
-            /// azimuth), so dr²/dφ = −2μ²(m·d)(m·d⊥)/(μ² + (m·d)²)².
-            #[inline]
-            fn curvature(&self, k: usize, o: &Corner) -> Real {
-                let d = V3::new(o.direction.x, o.direction.y, 0.0).normalize_or_zero();
-                let dp = V3::new(-d.y, d.x, 0.0);
-                let rate = |e: usize| {
-                    let m = self.edge_normal[e];
-                    let mu2 = m.z * m.z;
-                    let (md, mp) = (m.x * d.x + m.y * d.y, m.x * dp.x + m.y * dp.y);
-                    let q = mu2 + md * md;
-                    if q > 0.0 {
-                        -2.0 * mu2 * md * mp / (q * q)
-                    } else {
-                        0.0
-                    }
-                };
-                let inner = if self.inner[k] != NONE {
-                    rate(self.inner[k])
-                } else {
-                    0.0
-                };
-                0.5 * (rate(self.outer[k]) - inner)
             }
 
             /// The number of Newton steps [`ProjectedPolygon::sample`] takes
@@ -996,7 +745,7 @@ macro_rules! projected_polygon_impl {
                 self.frame.z.dot(w)
             }
 
-            #[inline]
+            #[inline(always)]
             fn pdf_of(&self, cos_theta: Real) -> Real {
                 if cos_theta > 0.0 {
                     cos_theta / self.projected_solid_angle
@@ -1082,9 +831,11 @@ macro_rules! projected_polygon_impl {
                     let delta = cross2(pa, l)
                         .atan2(pa.x * l.x + pa.y * l.y)
                         .clamp(0.0, self.width[k]);
-                    let (area, i, o) = self.sector_area(k, delta);
-                    let before = if k > 0 { self.cumulative[k - 1] } else { 0.0 };
-                    let gap = self.height_gap(k, &i, &o);
+                    let sector = self.sector(k);
+                    let (i, o, _) = sector.corners(delta);
+                    let (area, _) = sector.area_and_scale::<false>(&i, &o);
+                    let before = sector.before;
+                    let gap = sector.height_gap(&i, &o);
                     let ri2 = i.direction.x * i.direction.x + i.direction.y * i.direction.y;
                     let u1 = if gap > 0.0 { (r2 - ri2) / gap } else { 0.0 };
                     V2::new(clamp01((before + area) / total), clamp01(u1))

@@ -163,6 +163,22 @@ macro_rules! segment_impl {
             v * v2 * estrin(v2, &V_MINUS_SIN_TAYLOR)
         }
 
+        /// [`v_minus_sin`] for v ∈ [0, 1000], to the bit, without a branch:
+        /// both forms computed and one selected, so that a loop calling it
+        /// vectorises (the arcs of [`ProjectedPolygon`](crate::f64::ProjectedPolygon)'s
+        /// sectors, v ≤ π).
+        #[inline(always)]
+        pub fn v_minus_sin_branch_free(v: Real) -> Real {
+            let v2 = v * v;
+            let series = v * v2 * estrin(v2, &V_MINUS_SIN_TAYLOR);
+            let direct = v - sin(v);
+            if v >= 1.0 {
+                direct
+            } else {
+                series
+            }
+        }
+
         /// The area φ − sin φ cos φ of the unit-disk segment of half-angle
         /// φ ∈ [0, π] (the segment of height 1 − cos φ).
         #[inline]
@@ -272,6 +288,28 @@ mod tests {
         assert_eq!(v_minus_sin(0.0), 0.0);
     }
 
+    /// The branch-free form is the branching one to the bit on [0, 1000]
+    /// (both precisions), across the switch at v = 1.
+    #[test]
+    fn branch_free_v_minus_sin_is_the_same_bits() {
+        for i in 0..=200_000 {
+            let v = i as f64 * 0.005;
+            assert_eq!(
+                v_minus_sin_branch_free(v).to_bits(),
+                v_minus_sin(v).to_bits(),
+                "v = {v}"
+            );
+            let v32 = v as f32;
+            assert_eq!(
+                super::f32::v_minus_sin_branch_free(v32).to_bits(),
+                super::f32::v_minus_sin(v32).to_bits(),
+                "f32 v = {v32}"
+            );
+        }
+        for v in [1.0 - f64::EPSILON / 2.0, 1.0, 1.0 + f64::EPSILON, PI] {
+            assert_eq!(v_minus_sin_branch_free(v), v_minus_sin(v));
+        }
+    }
     #[test]
     fn segment_area_is_inverted_to_a_few_ulps() {
         let mut worst: f64 = 0.0;

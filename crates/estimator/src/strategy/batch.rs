@@ -702,9 +702,11 @@ fn disk_table_batch(
 impl PreparedEmitter {
     /// Projected sampling of a sphere or sky cap wholly above the horizon,
     /// in one branch-free loop (`WholeProjectedSphere`,
-    /// `WholeProjectedCap`): [`EmitterProjected::sample`] and
+    /// `WholeProjectedCap`), and of a polygon through its tabulated
+    /// sampler's batch: [`EmitterProjected::sample`] and
     /// `projected_value`'s L max(n·ω, 0)/p to the bit. `None` for other
-    /// emitters and for caps that cross the horizon (the one-sample path).
+    /// emitters, for caps that cross the horizon and for polygons of more
+    /// vertices than one sampler takes (the one-sample path).
     #[inline(always)]
     fn projected_whole_batch(
         &self,
@@ -754,13 +756,52 @@ impl PreparedEmitter {
                     },
                 ))
             }
+            EmitterProjected::PolygonTable(p) => {
+                // The batch of sector-sorted, branch-free passes
+                // (`TabulatedProjectedPolygon::sample_directions`): the
+                // directions of `sample`, to the bit, and their density
+                // from a copy of the sampler.
+                let plain = &{ *p.sampler() };
+                let mut directions = [[0.0f64; DISK_TABLE_BATCH]; 3];
+                let mut hits = [0u64; 2];
+                let mut start = 0;
+                while start < out.len() {
+                    let m = DISK_TABLE_BATCH.min(out.len() - start);
+                    let range = start..start + m;
+                    let [dx, dy, dz] = &mut directions;
+                    let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
+                    let (ux, uy) = (&block.ux[range.clone()], &block.uy[range.clone()]);
+                    p.sample_directions(ux, uy, dx, dy, dz);
+                    let (dx, dy, dz) = (&*dx, &*dy, &*dz);
+                    let part = Block {
+                        ux,
+                        uy,
+                        vx: &block.vx[range.clone()],
+                        vy: &block.vy[range.clone()],
+                        store: block.store,
+                    };
+                    let got = single(
+                        &part,
+                        &mut out[range],
+                        #[inline(always)]
+                        |i, _| {
+                            let w = DVec3::new(dx[i], dy[i], dz[i]);
+                            value((w, plain.sample_density(w)))
+                        },
+                    );
+                    hits[0] += got[0];
+                    start += m;
+                }
+                Some(hits)
+            }
             _ => None,
         }
     }
 }
 
-/// How many light directions [`disk_table_batch`] draws at a time (three
-/// arrays of f64 on the stack, 3 KB).
+/// How many light directions [`disk_table_batch`] (and projected
+/// sampling of a polygon) draws at a time (three arrays of f64 on the
+/// stack, 3 KB).
 const DISK_TABLE_BATCH: usize = 128;
 
 /// L(ω) max(cos θ, 0) from the radiance lookup `radiance`, for the unit

@@ -30,8 +30,8 @@ use lambert_geometry::f32::{Frame, Intersect, PolygonFromOrigin, Ray, SphereFrom
 use lambert_sampling::f32::{
     pdf_cosine_hemisphere, sample_cosine_hemisphere, sample_uniform_hemisphere,
     sample_uniform_sphere, ConeCosine, DirectionSample, LightSample, LightSampler,
-    PolygonAreaSampler, PolygonSolidAngle, SphericalFan, TabulatedDiskSolidAngle, UniformCone,
-    UniformSolidAngle,
+    PolygonAreaSampler, PolygonSolidAngle, SphericalFan, TabulatedDiskSolidAngle,
+    TabulatedProjectedPolygon, UniformCone, UniformSolidAngle,
 };
 use lambert_sampling::isa::Isa;
 
@@ -385,6 +385,52 @@ fn disk_directions(
         let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
         disk.sample_directions(&sx[at.clone()], &sy[at.clone()], dx, dy, dz);
         let got = f(at, [dx, dy, dz], out);
+        hits[0] += got[0];
+        hits[1] += got[1];
+    }
+    hits
+}
+
+/// Projected sampling of a polygon through its tabulated sampler's batch
+/// ([`TabulatedProjectedPolygon::sample_directions`]: branch-free passes
+/// by sector that vectorise, the same directions to the bit as `sample`,
+/// each of the density `sample_density` gives), [`DISK_BATCH`] samples at
+/// a time; cos θ/p per sample as [`scored`] forms it, so the same values.
+#[inline(always)]
+fn projected_polygon_batch(
+    polygon: &TabulatedProjectedPolygon,
+    normal: Vec3,
+    radiance: f64,
+    block: &Block<'_>,
+    out: &mut [f64],
+) -> PartHits {
+    // The density's sampler copied (see `mis_loop`).
+    let plain = &{ *polygon.sampler() };
+    let mut directions = [[0.0f32; DISK_BATCH]; 3];
+    let mut hits = [0u64; 2];
+    for (k, out) in out.chunks_mut(DISK_BATCH).enumerate() {
+        let m = out.len();
+        let at = k * DISK_BATCH..k * DISK_BATCH + m;
+        let [dx, dy, dz] = &mut directions;
+        let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
+        polygon.sample_directions(&block.ux[at.clone()], &block.uy[at], dx, dy, dz);
+        let drawn = Block {
+            ux: dx,
+            uy: dy,
+            vx: dz,
+            vy: dz,
+            store: block.store,
+        };
+        let got = accumulate(
+            radiance,
+            &drawn,
+            out,
+            #[inline(always)]
+            |xy, z| {
+                let w = Vec3::new(xy.x, xy.y, z.x);
+                [cos_over_pdf(normal, w, plain.sample_density(w))]
+            },
+        );
         hits[0] += got[0];
         hits[1] += got[1];
     }
@@ -930,14 +976,7 @@ impl PreparedEmitterF32 {
                     |u| s.sample_direction(u),
                 )
             }
-            Projected::Polygon(p) => scored(
-                normal,
-                radiance,
-                block,
-                out,
-                #[inline(always)]
-                |u| p.sample(u),
-            ),
+            Projected::Polygon(p) => projected_polygon_batch(p, normal, radiance, block, out),
             Projected::PolygonFan(s) => scored(
                 normal,
                 radiance,
