@@ -4,7 +4,8 @@
 //! vs projected cap; sphere solid angle vs projected sphere; spherical
 //! triangle and rectangle vs projected polygon; disk area vs disk solid
 //! angle, plain, tabulated and tabulated in batches (`TabulatedDiskSolidAngle`, and
-//! `TabulatedProjectedPolygon` for the non-central square); and, next to
+//! `TabulatedProjectedPolygon` for the non-central square; the projected
+//! cap across the horizon in batches too); and, next to
 //! the projected polygon, a prototype of Arvo's 2001 method
 //! (`lambert_benches::arvo`), the alternative to Peters' that the sampling
 //! crate measured and did not choose. Group `projected` samples from a
@@ -267,10 +268,11 @@ fn sampling(c: &mut Criterion) {
         |u| table32.sample(u).direction,
         table64.sample(u).direction
     );
-    // The same directions BATCH at a time by the table's batch, in the
+    // The same directions BATCH at a time by the samplers' batches, in the
     // process's instruction set (what the estimator's light and MIS loops
-    // use, and its projected loop for the square); the random numbers are
-    // drawn into arrays first.
+    // use for the disk, and its projected loops for the square and for
+    // caps across the horizon); the random numbers are drawn into arrays
+    // first.
     macro_rules! table_batch {
         ($name:expr, $table:expr, $next:ident, $zero:expr) => {
             g.bench_function($name, |b| {
@@ -302,6 +304,18 @@ fn sampling(c: &mut Criterion) {
     table_batch!(
         "projected square (non-central) tabulated batch f64",
         toff64,
+        next_u64x2,
+        0.0f64
+    );
+    table_batch!(
+        "projected cap straddling batch f32",
+        scap32,
+        next_u32x2,
+        0.0f32
+    );
+    table_batch!(
+        "projected cap straddling batch f64",
+        scap64,
         next_u64x2,
         0.0f64
     );

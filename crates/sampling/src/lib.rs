@@ -43,6 +43,7 @@ mod light_sampler;
 mod polygon_area_fan;
 mod polygon_light;
 mod projected_cap;
+mod projected_cap_batch;
 mod projected_polygon;
 mod projected_sector;
 mod projected_sphere;

@@ -5,7 +5,7 @@ macro_rules! projected_cap_impl {
         use crate::direction_sample::$p::DirectionSample;
         use crate::disk::$p::{concentric_polar, invert_concentric_disk};
         use crate::error::SamplingError;
-        use crate::segment::$p::{segment_area, segment_height};
+        use crate::segment::$p::{segment_area, segment_height, segment_height_branch_free};
         use lambert_geometry::precision::$p::{Real, ONE_MINUS_EPSILON, PI, V2, V3};
         use lambert_geometry::$p::unit_vector;
 
@@ -421,6 +421,59 @@ macro_rules! projected_cap_impl {
                     let half = (xi * (2.0 - xi)).max(0.0).sqrt();
                     self.turn_back(1.0 - xi, half * t, half * spread)
                 }
+            }
+
+            /// [`sample_union`](Self::sample_union) without a branch on u,
+            /// for loops that vectorise: the segment solve of whichever
+            /// piece u falls in, run once
+            /// ([`segment_height_branch_free`]), then both pieces' points
+            /// formed and one selected. Returns the direction and whether
+            /// it is `sample_union`'s to the bit (false only where the
+            /// solve is, NaN u; the caller sends those to `sample`).
+            #[inline(always)]
+            pub(crate) fn sample_union_branch_free(&self, u: V2) -> (V3, bool) {
+                let target = u.x * self.projected_solid_angle;
+                let v = Self::along(u.y);
+                let t = 2.0 * v - 1.0;
+                let spread = 2.0 * (v * (1.0 - v)).sqrt();
+                let in_ellipse = target < self.area_ellipse;
+                let rest = ((1.0 - u.x) * self.projected_solid_angle)
+                    .max(0.5 * Real::EPSILON * self.projected_solid_angle)
+                    .min(self.area_circle);
+                let area = if in_ellipse {
+                    target / (self.a_x * self.a_y)
+                } else {
+                    rest
+                };
+                let (height, answered) = segment_height_branch_free(area);
+                // The ellipse's slice at k = 1 + η (as `sample_union`).
+                let k = height.min(self.k_t);
+                let half = (k * (2.0 - k)).max(0.0).sqrt();
+                let z_rim = self.sin_m * self.sin_g * (self.k_t - k);
+                let across = self.sin_m * half * spread;
+                let in_ellipse_point = (
+                    self.x_c + self.a_x * (k - 1.0),
+                    self.a_y * half * t,
+                    (z_rim * z_rim + across * across).sqrt(),
+                );
+                // The circle's slice at ξ.
+                let xi = height.min(self.xi_t);
+                let half = (xi * (2.0 - xi)).max(0.0).sqrt();
+                let in_circle_point = (1.0 - xi, half * t, half * spread);
+                let (x, y, z) = if in_ellipse {
+                    in_ellipse_point
+                } else {
+                    in_circle_point
+                };
+                (self.turn_back(x, y, z), answered)
+            }
+
+            /// Whether the visible cap is a circular segment joined to an
+            /// elliptical one (its axis above the horizon, its rim across
+            /// it), the region [`sample_union_branch_free`](Self::sample_union_branch_free) draws.
+            #[inline]
+            pub(crate) fn is_union(&self) -> bool {
+                self.region == Region::Union
             }
 
             /// Area of the "minus" region up to the slice at height ξ from

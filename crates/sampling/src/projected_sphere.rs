@@ -159,6 +159,33 @@ macro_rules! projected_sphere_impl {
                 }
             }
 
+            /// [`world_direction`](Self::world_direction) by a select
+            /// rather than a branch, for loops that vectorise: both the
+            /// direction and its lifted form are formed, one kept (the
+            /// same value).
+            #[inline(always)]
+            pub(crate) fn world_direction_branch_free(&self, local: V3) -> (V3, Real) {
+                let w = self.frame.from_local(local);
+                let cos_theta = self.frame.z.dot(w);
+                let (lifted, lifted_cos) = self.lifted(w, cos_theta);
+                if cos_theta > 0.0 {
+                    (w, cos_theta)
+                } else {
+                    (lifted, lifted_cos)
+                }
+            }
+
+            /// The density [`sample_direction`](Self::sample_direction)
+            /// gives the direction `w` it drew: cos θ/Ω⊥ with cos θ = n·w
+            /// (0 if that is not positive). Unlike [`pdf`](Self::pdf) it
+            /// does not test that `w` lies in the cap: the batches
+            /// ([`sample_directions`](Self::sample_directions)) pair their
+            /// directions with it.
+            #[inline(always)]
+            pub fn sample_density(&self, w: V3) -> Real {
+                self.pdf_of(self.frame.z.dot(w))
+            }
+
             /// A direction `w` whose cos θ (a local cos θ of a few ε) the
             /// frame's rounding turned ≤ 0, lifted to cos θ ≈ ε (a move of
             /// ~ε rad, inside the rim band), and its new cos θ.

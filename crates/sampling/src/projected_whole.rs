@@ -103,15 +103,7 @@ macro_rules! projected_whole_impl {
             #[inline(always)]
             pub fn sample_direction(&self, u: V2) -> DirectionSample {
                 let local = self.cap.sample(u).direction;
-                let frame = self.sphere.frame();
-                let w = frame.from_local(local);
-                let cos_theta = frame.z.dot(w);
-                let (lifted, lifted_cos) = self.sphere.lifted(w, cos_theta);
-                let (w, cos_theta) = if cos_theta > 0.0 {
-                    (w, cos_theta)
-                } else {
-                    (lifted, lifted_cos)
-                };
+                let (w, cos_theta) = self.sphere.world_direction_branch_free(local);
                 DirectionSample {
                     direction: w,
                     pdf: self.sphere.pdf_of(cos_theta),

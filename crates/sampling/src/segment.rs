@@ -120,12 +120,44 @@ fn cube_root(x: f64) -> f64 {
     if !(f64::MIN_POSITIVE..=1e300).contains(&x) {
         return x.cbrt();
     }
-    let mut y = f64::from_bits(x.to_bits() / 3 + 0x2A9F_7893_782D_A1CE);
+    cube_root_in_range(x)
+}
+
+/// [`cube_root`] without a branch: its value, and whether that is
+/// [`cube_root`]'s (x in its range, or ±0, which it returns as it is);
+/// for other x the value is meaningless (a vectorised loop sends those
+/// lanes to [`cube_root`]).
+#[inline(always)]
+fn cube_root_branch_free(x: f64) -> (f64, bool) {
+    let y = cube_root_in_range(x);
+    let in_range = (f64::MIN_POSITIVE..=1e300).contains(&x);
+    let zero = x == 0.0;
+    (if zero { x } else { y }, in_range || zero)
+}
+
+/// The guess and two Halley steps of [`cube_root`], for x in its range.
+#[inline(always)]
+fn cube_root_in_range(x: f64) -> f64 {
+    let mut y = f64::from_bits(third_of(x.to_bits()) + 0x2A9F_7893_782D_A1CE);
     for _ in 0..2 {
         let y3 = y * y * y;
         y *= (y3 + 2.0 * x) / (2.0 * y3 + x);
     }
     y
+}
+
+/// ⌊b/3⌋ for any b, from 32-bit pieces: with b = H·2³² + L and
+/// H = 3a + r, ⌊b/3⌋ = a·2³² + r·⌊2³²/3⌋ + ⌊L/3⌋ + [L mod 3 + r ≥ 3]
+/// (2³² = 3⌊2³²/3⌋ + 1). The same value as `b / 3`, which compiles to a
+/// 64-bit high multiply that AVX2 and AVX-512 lack, so a loop holding it
+/// does not vectorise; divisions of 32-bit words by 3 do.
+#[inline(always)]
+fn third_of(b: u64) -> u64 {
+    const THIRD_OF_2_POW_32: u32 = 1_431_655_765;
+    let (high, low) = ((b >> 32) as u32, b as u32);
+    let (a, r) = (high / 3, high % 3);
+    let carry = u32::from(low % 3 + r >= 3);
+    ((a as u64) << 32) + (r * THIRD_OF_2_POW_32 + low / 3 + carry) as u64
 }
 
 macro_rules! segment_impl {
@@ -243,6 +275,44 @@ macro_rules! segment_impl {
                 }
             }
             (if flip { PI - phi } else { phi }, steps)
+        }
+
+        /// [`segment_height`] without a branch on the area, for loops that
+        /// vectorise: the first Halley step taken for every area, and the
+        /// height from φ by both of its forms, one selected. Returns the
+        /// height and whether it is [`segment_height`]'s to the bit: true
+        /// where that iteration stops after its first step, which it does
+        /// for every area (measured; module docs) but NaN and areas whose
+        /// cube root [`cube_root`] leaves to the standard library
+        /// (subnormal ones); the caller sends those to [`segment_height`].
+        #[inline(always)]
+        pub(crate) fn segment_height_branch_free(area: Real) -> (Real, bool) {
+            let area = area.clamp(0.0, PI);
+            let flip = area > 0.5 * PI;
+            let target = if flip { PI - area } else { area };
+            let (t, root_answered) = super::cube_root_branch_free((1.5 * target) as f64);
+            let t = t as Real;
+            let seed = t * estrin(t * t, &SEGMENT_SEED);
+            // One step of `segment_angle_and_steps`, in its order.
+            let (s, c) = sin_cos(seed);
+            let f = 0.5 * v_minus_sin_branch_free(2.0 * seed) - target;
+            let f1 = 2.0 * s * s;
+            let f2 = 4.0 * s * c;
+            let denominator = 2.0 * f1 * f1 - f * f2;
+            let step = 2.0 * f * f1 / denominator;
+            let stepped = (seed - step).clamp(0.0, 0.5 * PI);
+            let stops = step.abs() <= 0.25 * CBRT_EPSILON * stepped;
+            // No step for area 0, nor when the denominator is not
+            // positive: φ stays the guess.
+            let steps = target > 0.0;
+            let usable = denominator > 0.0;
+            let phi = if steps && usable { stepped } else { seed };
+            let answered = root_answered && (!steps || !usable || stops);
+            let phi = if flip { PI - phi } else { phi };
+            let low = phi <= 0.5 * PI;
+            let s = sin(0.5 * if low { phi } else { PI - phi });
+            let height = if low { 2.0 * s * s } else { 2.0 - 2.0 * s * s };
+            (height, answered)
         }
 
         /// The height k ∈ [0, 2] of the unit-disk segment of area
@@ -369,6 +439,89 @@ mod tests {
             assert_eq!(super::cube_root(x), x.cbrt(), "x = {x:e}");
         }
         assert!(super::cube_root(f64::NAN).is_nan());
+    }
+
+    #[test]
+    fn third_of_is_integer_division_by_three() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
+        let edges = [
+            0,
+            1,
+            2,
+            3,
+            u32::MAX as u64,
+            1 << 32,
+            (1 << 32) + 2,
+            u64::MAX,
+            u64::MAX - 1,
+        ];
+        for b in edges
+            .into_iter()
+            .chain((0..100_000).map(|_| rng.random::<u64>()))
+        {
+            assert_eq!(super::third_of(b), b / 3, "b = {b}");
+        }
+        // Every remainder pair (H mod 3, L mod 3) at the carry's edge.
+        for high in [3u64, 4, 5] {
+            for low in [u32::MAX as u64 - 2, u32::MAX as u64 - 1, u32::MAX as u64] {
+                let b = (high << 32) + low;
+                assert_eq!(super::third_of(b), b / 3, "b = {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn branch_free_segment_height_is_the_same_bits() {
+        // Wherever it says it answered, the value is `segment_height`'s to
+        // the bit; it answers every area but NaN and the subnormal ones
+        // (whose cube roots `cube_root` leaves to the standard library).
+        fn check<R: Copy + std::fmt::Debug>(
+            areas: impl Iterator<Item = R>,
+            branch_free: fn(R) -> (R, bool),
+            plain: fn(R) -> R,
+            bits: fn(R) -> u64,
+            expect_answer: fn(R) -> bool,
+        ) {
+            for a in areas {
+                let (k, answered) = branch_free(a);
+                assert_eq!(answered, expect_answer(a), "area {a:?}");
+                if answered {
+                    assert_eq!(bits(k), bits(plain(a)), "area {a:?}");
+                }
+            }
+        }
+        let areas = || {
+            (0..=600)
+                .map(|i| 1e-300 * (PI / 1e-300).powf(i as f64 / 600.0))
+                .chain((0..=20_000).map(|i| PI * i as f64 / 20_000.0))
+                .chain([
+                    -0.0,
+                    -1.0,
+                    0.5 * PI,
+                    PI,
+                    4.0,
+                    f64::INFINITY,
+                    1e-310,
+                    f64::NAN,
+                ])
+        };
+        check(
+            areas(),
+            segment_height_branch_free,
+            segment_height,
+            f64::to_bits,
+            // 1.5 A below the smallest normal number: the library's root.
+            |a| !(a.is_nan() || a > 0.0 && 1.5 * a < f64::MIN_POSITIVE),
+        );
+        // f32 areas reach the cube root in f64: only NaN is left out.
+        check(
+            areas().map(|a| a as f32),
+            super::f32::segment_height_branch_free,
+            super::f32::segment_height,
+            |k| k.to_bits() as u64,
+            |a| !a.is_nan(),
+        );
     }
 
     #[test]
