@@ -164,8 +164,15 @@ impl PreparedEmitter {
                 receiver,
                 #[inline(always)]
                 |_| e.radiance,
-                sample_sky,
-                pdf_uniform_sphere,
+                // Closures, not the functions: passed as function items,
+                // their call shims were left out of line once the kernel
+                // grew (a scalar call per sample: 5 → 21 ns in f64).
+                #[allow(clippy::redundant_closure)]
+                #[inline(always)]
+                |u| sample_sky(u),
+                #[allow(clippy::redundant_closure)]
+                #[inline(always)]
+                |w| pdf_uniform_sphere(w),
                 &block,
                 out,
             ),
@@ -659,6 +666,50 @@ fn disk_table_batch(
     // for every cosine direction, and through the reference its loop stayed
     // scalar (as the f32 kernels' did).
     let plain = &{ *disk.sampler() };
+    in_direction_batches(
+        block,
+        (sx, sy),
+        out,
+        #[inline(always)]
+        |sx, sy, dx, dy, dz| disk.sample_directions(sx, sy, dx, dy, dz),
+        #[inline(always)]
+        |part, [dx, dy, dz], out| {
+            sampled_batch(
+                emitter,
+                receiver,
+                // A closure, not `&radiance`: the call through the
+                // reference was left out of line (a scalar call per
+                // sample, 10 % of a close disk's MIS sample).
+                #[allow(clippy::redundant_closure)]
+                #[inline(always)]
+                |w| radiance(w),
+                #[inline(always)]
+                |i, _| disk_table_direction(disk, DVec3::new(dx[i], dy[i], dz[i])),
+                #[inline(always)]
+                |w| plain.pdf(w),
+                part,
+                out,
+            )
+        },
+    )
+}
+
+/// Directions drawn [`DISK_TABLE_BATCH`] at a time, for the samplers whose
+/// one-sample form does not vectorise but whose batch does
+/// (`sample_directions` of the tabulated disk, the tabulated projected
+/// polygon, projected caps and spheres): `draw(sx, sy, dx, dy, dz)` fills
+/// the batch's directions from the light sample's coordinates
+/// `(sx, sy)`, then `score(part, [dx, dy, dz], out)` runs the kernel over
+/// the same range of the block. Adds up the hits; `None` if `score` gives
+/// none.
+#[inline(always)]
+fn in_direction_batches(
+    block: &Block<'_>,
+    (sx, sy): (&[f64], &[f64]),
+    out: &mut [f64],
+    mut draw: impl FnMut(&[f64], &[f64], &mut [f64], &mut [f64], &mut [f64]),
+    mut score: impl FnMut(&Block<'_>, [&[f64]; 3], &mut [f64]) -> Option<PartHits>,
+) -> Option<PartHits> {
     let mut directions = [[0.0f64; DISK_TABLE_BATCH]; 3];
     let mut hits = [0u64; 2];
     let mut start = 0;
@@ -667,8 +718,7 @@ fn disk_table_batch(
         let range = start..start + m;
         let [dx, dy, dz] = &mut directions;
         let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
-        disk.sample_directions(&sx[range.clone()], &sy[range.clone()], dx, dy, dz);
-        let (dx, dy, dz) = (&*dx, &*dy, &*dz);
+        draw(&sx[range.clone()], &sy[range.clone()], dx, dy, dz);
         let part = Block {
             ux: &block.ux[range.clone()],
             uy: &block.uy[range.clone()],
@@ -676,22 +726,7 @@ fn disk_table_batch(
             vy: &block.vy[range.clone()],
             store: block.store,
         };
-        let got = sampled_batch(
-            emitter,
-            receiver,
-            // A closure, not `&radiance`: the call through the reference
-            // was left out of line (a scalar call per sample, 10 % of a
-            // close disk's MIS sample).
-            #[allow(clippy::redundant_closure)]
-            #[inline(always)]
-            |w| radiance(w),
-            #[inline(always)]
-            |i, _| disk_table_direction(disk, DVec3::new(dx[i], dy[i], dz[i])),
-            #[inline(always)]
-            |w| plain.pdf(w),
-            &part,
-            &mut out[range],
-        )?;
+        let got = score(&part, [&*dx, &*dy, &*dz], &mut out[range])?;
         hits[0] += got[0];
         hits[1] += got[1];
         start += m;
@@ -702,11 +737,12 @@ fn disk_table_batch(
 impl PreparedEmitter {
     /// Projected sampling of a sphere or sky cap wholly above the horizon,
     /// in one branch-free loop (`WholeProjectedSphere`,
-    /// `WholeProjectedCap`), and of a polygon through its tabulated
-    /// sampler's batch: [`EmitterProjected::sample`] and
-    /// `projected_value`'s L max(n·ω, 0)/p to the bit. `None` for other
-    /// emitters, for caps that cross the horizon and for polygons of more
-    /// vertices than one sampler takes (the one-sample path).
+    /// `WholeProjectedCap`), of one across the horizon and of a polygon
+    /// through its sampler's batch (`sample_directions`):
+    /// [`EmitterProjected::sample`] and `projected_value`'s
+    /// L max(n·ω, 0)/p to the bit. `None` for other emitters and for
+    /// polygons of more vertices than one sampler takes (the one-sample
+    /// path).
     #[inline(always)]
     fn projected_whole_batch(
         &self,
@@ -730,31 +766,82 @@ impl PreparedEmitter {
             },
         );
         match &self.projected {
-            EmitterProjected::Sphere(s) => {
-                let whole = &s.whole()?;
-                Some(single(
-                    block,
-                    out,
-                    #[inline(always)]
-                    |_, u| {
-                        let d = whole.sample_direction(u);
-                        value((d.direction, d.pdf))
-                    },
-                ))
-            }
             EmitterProjected::Cap(cap, r) => {
-                let whole = &cap.whole()?;
                 let (frame, cap_normal) = (&{ r.frame }, r.normal);
                 let omega = cap.projected_solid_angle();
-                Some(single(
-                    block,
-                    out,
+                let cap_value = hoisted(
                     #[inline(always)]
-                    |_, u| {
-                        let w = frame.from_local(whole.sample(u).direction);
+                    move |local: DVec3| {
+                        let w = frame.from_local(local);
                         value((w, cap_normal.dot(w).max(0.0) / omega))
                     },
-                ))
+                );
+                if let Some(whole) = cap.whole() {
+                    let whole = &whole;
+                    return Some(single(
+                        block,
+                        out,
+                        #[inline(always)]
+                        |_, u| cap_value(whole.sample(u).direction),
+                    ));
+                }
+                // Across the horizon: the cap's batch
+                // (`ProjectedCap::sample_directions`), the directions of
+                // `sample` to the bit.
+                let cap = &{ *cap };
+                in_direction_batches(
+                    block,
+                    (block.ux, block.uy),
+                    out,
+                    #[inline(always)]
+                    |ux, uy, dx, dy, dz| cap.sample_directions(ux, uy, dx, dy, dz),
+                    #[inline(always)]
+                    |part, [dx, dy, dz], out| {
+                        Some(single(
+                            part,
+                            out,
+                            #[inline(always)]
+                            |i, _| cap_value(DVec3::new(dx[i], dy[i], dz[i])),
+                        ))
+                    },
+                )
+            }
+            EmitterProjected::Sphere(s) => {
+                if let Some(whole) = s.whole() {
+                    let whole = &whole;
+                    return Some(single(
+                        block,
+                        out,
+                        #[inline(always)]
+                        |_, u| {
+                            let d = whole.sample_direction(u);
+                            value((d.direction, d.pdf))
+                        },
+                    ));
+                }
+                // Across the horizon: the sphere's batch
+                // (`ProjectedSphere::sample_directions`), the directions of
+                // `sample_direction` to the bit, and their density.
+                let sphere = &{ *s };
+                in_direction_batches(
+                    block,
+                    (block.ux, block.uy),
+                    out,
+                    #[inline(always)]
+                    |ux, uy, dx, dy, dz| sphere.sample_directions(ux, uy, dx, dy, dz),
+                    #[inline(always)]
+                    |part, [dx, dy, dz], out| {
+                        Some(single(
+                            part,
+                            out,
+                            #[inline(always)]
+                            |i, _| {
+                                let w = DVec3::new(dx[i], dy[i], dz[i]);
+                                value((w, sphere.sample_density(w)))
+                            },
+                        ))
+                    },
+                )
             }
             EmitterProjected::PolygonTable(p) => {
                 // The batch of sector-sorted, branch-free passes
@@ -762,37 +849,25 @@ impl PreparedEmitter {
                 // directions of `sample`, to the bit, and their density
                 // from a copy of the sampler.
                 let plain = &{ *p.sampler() };
-                let mut directions = [[0.0f64; DISK_TABLE_BATCH]; 3];
-                let mut hits = [0u64; 2];
-                let mut start = 0;
-                while start < out.len() {
-                    let m = DISK_TABLE_BATCH.min(out.len() - start);
-                    let range = start..start + m;
-                    let [dx, dy, dz] = &mut directions;
-                    let (dx, dy, dz) = (&mut dx[..m], &mut dy[..m], &mut dz[..m]);
-                    let (ux, uy) = (&block.ux[range.clone()], &block.uy[range.clone()]);
-                    p.sample_directions(ux, uy, dx, dy, dz);
-                    let (dx, dy, dz) = (&*dx, &*dy, &*dz);
-                    let part = Block {
-                        ux,
-                        uy,
-                        vx: &block.vx[range.clone()],
-                        vy: &block.vy[range.clone()],
-                        store: block.store,
-                    };
-                    let got = single(
-                        &part,
-                        &mut out[range],
-                        #[inline(always)]
-                        |i, _| {
-                            let w = DVec3::new(dx[i], dy[i], dz[i]);
-                            value((w, plain.sample_density(w)))
-                        },
-                    );
-                    hits[0] += got[0];
-                    start += m;
-                }
-                Some(hits)
+                in_direction_batches(
+                    block,
+                    (block.ux, block.uy),
+                    out,
+                    #[inline(always)]
+                    |ux, uy, dx, dy, dz| p.sample_directions(ux, uy, dx, dy, dz),
+                    #[inline(always)]
+                    |part, [dx, dy, dz], out| {
+                        Some(single(
+                            part,
+                            out,
+                            #[inline(always)]
+                            |i, _| {
+                                let w = DVec3::new(dx[i], dy[i], dz[i]);
+                                value((w, plain.sample_density(w)))
+                            },
+                        ))
+                    },
+                )
             }
             _ => None,
         }
