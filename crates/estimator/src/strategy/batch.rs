@@ -734,6 +734,33 @@ fn in_direction_batches(
     Some(hits)
 }
 
+/// `value(w)` of each direction w that `draw` fills in batches from the
+/// block's u ([`in_direction_batches`]), through [`single`]: projected
+/// sampling through the samplers' batches.
+#[inline(always)]
+fn drawn_values(
+    block: &Block<'_>,
+    out: &mut [f64],
+    draw: impl FnMut(&[f64], &[f64], &mut [f64], &mut [f64], &mut [f64]),
+    value: impl Fn(DVec3) -> f64,
+) -> Option<PartHits> {
+    in_direction_batches(
+        block,
+        (block.ux, block.uy),
+        out,
+        draw,
+        #[inline(always)]
+        |part, [dx, dy, dz], out| {
+            Some(single(
+                part,
+                out,
+                #[inline(always)]
+                |i, _| value(DVec3::new(dx[i], dy[i], dz[i])),
+            ))
+        },
+    )
+}
+
 impl PreparedEmitter {
     /// Projected sampling of a sphere or sky cap wholly above the horizon,
     /// in one branch-free loop (`WholeProjectedSphere`,
@@ -789,21 +816,12 @@ impl PreparedEmitter {
                 // (`ProjectedCap::sample_directions`), the directions of
                 // `sample` to the bit.
                 let cap = &{ *cap };
-                in_direction_batches(
+                drawn_values(
                     block,
-                    (block.ux, block.uy),
                     out,
                     #[inline(always)]
                     |ux, uy, dx, dy, dz| cap.sample_directions(ux, uy, dx, dy, dz),
-                    #[inline(always)]
-                    |part, [dx, dy, dz], out| {
-                        Some(single(
-                            part,
-                            out,
-                            #[inline(always)]
-                            |i, _| cap_value(DVec3::new(dx[i], dy[i], dz[i])),
-                        ))
-                    },
+                    cap_value,
                 )
             }
             EmitterProjected::Sphere(s) => {
@@ -823,24 +841,13 @@ impl PreparedEmitter {
                 // (`ProjectedSphere::sample_directions`), the directions of
                 // `sample_direction` to the bit, and their density.
                 let sphere = &{ *s };
-                in_direction_batches(
+                drawn_values(
                     block,
-                    (block.ux, block.uy),
                     out,
                     #[inline(always)]
                     |ux, uy, dx, dy, dz| sphere.sample_directions(ux, uy, dx, dy, dz),
                     #[inline(always)]
-                    |part, [dx, dy, dz], out| {
-                        Some(single(
-                            part,
-                            out,
-                            #[inline(always)]
-                            |i, _| {
-                                let w = DVec3::new(dx[i], dy[i], dz[i]);
-                                value((w, sphere.sample_density(w)))
-                            },
-                        ))
-                    },
+                    |w| value((w, sphere.sample_density(w))),
                 )
             }
             EmitterProjected::PolygonTable(p) => {
@@ -849,24 +856,13 @@ impl PreparedEmitter {
                 // directions of `sample`, to the bit, and their density
                 // from a copy of the sampler.
                 let plain = &{ *p.sampler() };
-                in_direction_batches(
+                drawn_values(
                     block,
-                    (block.ux, block.uy),
                     out,
                     #[inline(always)]
                     |ux, uy, dx, dy, dz| p.sample_directions(ux, uy, dx, dy, dz),
                     #[inline(always)]
-                    |part, [dx, dy, dz], out| {
-                        Some(single(
-                            part,
-                            out,
-                            #[inline(always)]
-                            |i, _| {
-                                let w = DVec3::new(dx[i], dy[i], dz[i]);
-                                value((w, plain.sample_density(w)))
-                            },
-                        ))
-                    },
+                    |w| value((w, plain.sample_density(w))),
                 )
             }
             _ => None,
