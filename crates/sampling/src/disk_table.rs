@@ -339,7 +339,7 @@ macro_rules! disk_table_impl {
                 dy: &mut [Real],
                 dz: &mut [Real],
             ) {
-                let n = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len());
+                let n = crate::soa::common_len(ux, uy, dx, dy, dz);
                 let (ux, uy) = (&ux[..n], &uy[..n]);
                 let (dx, dy, dz) = (&mut dx[..n], &mut dy[..n], &mut dz[..n]);
                 if self.disk.ecc == 0.0 {

@@ -179,7 +179,7 @@ macro_rules! hemisphere_impl {
             wz: &mut [Real],
         ) {
             use crate::soa::SOA_BLOCK;
-            let n = ux.len().min(uy.len()).min(wx.len()).min(wy.len()).min(wz.len());
+            let n = crate::soa::common_len(ux, uy, wx, wy, wz);
             let mut t = [0.0 as Real; SOA_BLOCK];
             let mut den = [0.0 as Real; SOA_BLOCK];
             let mut a_wins = [0u32; SOA_BLOCK];

@@ -68,7 +68,7 @@ macro_rules! projected_cap_batch_impl {
                 dy: &mut [Real],
                 dz: &mut [Real],
             ) {
-                let n = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len());
+                let n = crate::soa::common_len(ux, uy, dx, dy, dz);
                 // A copy: its fields stay in registers across the loops.
                 let cap = &{ *self };
                 if let Some(whole) = cap.whole() {
@@ -121,7 +121,7 @@ macro_rules! projected_cap_batch_impl {
                 uy: &[Real],
                 (dx, dy, dz): (&mut [Real], &mut [Real], &mut [Real]),
             ) {
-                let n = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len());
+                let n = crate::soa::common_len(ux, uy, dx, dy, dz);
                 for i in 0..n {
                     let w = self.sample(V2::new(ux[i], uy[i])).direction;
                     (dx[i], dy[i], dz[i]) = (w.x, w.y, w.z);
@@ -164,7 +164,7 @@ macro_rules! projected_cap_batch_impl {
                 dy: &mut [Real],
                 dz: &mut [Real],
             ) {
-                let n = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len());
+                let n = crate::soa::common_len(ux, uy, dx, dy, dz);
                 let (dx, dy, dz) = (&mut dx[..n], &mut dy[..n], &mut dz[..n]);
                 self.cap().sample_directions(ux, uy, dx, dy, dz);
                 let sphere = &{ *self };

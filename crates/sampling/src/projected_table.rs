@@ -331,7 +331,7 @@ macro_rules! projected_table_impl {
                 dy: &mut [Real],
                 dz: &mut [Real],
             ) {
-                let n = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len());
+                let n = crate::soa::common_len(ux, uy, dx, dy, dz);
                 if self.nodes.is_empty() {
                     self.central_directions(&ux[..n], &uy[..n], (dx, dy, dz));
                     return;
@@ -355,7 +355,7 @@ macro_rules! projected_table_impl {
                 uy: &[Real],
                 (dx, dy, dz): (&mut [Real], &mut [Real], &mut [Real]),
             ) {
-                let n = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len());
+                let n = crate::soa::common_len(ux, uy, dx, dy, dz);
                 for i in 0..n {
                     let w = self.sample(V2::new(ux[i], uy[i])).direction;
                     (dx[i], dy[i], dz[i]) = (w.x, w.y, w.z);
@@ -373,7 +373,7 @@ macro_rules! projected_table_impl {
                 (dx, dy, dz): (&mut [Real], &mut [Real], &mut [Real]),
             ) {
                 const LANES: usize = TabulatedProjectedPolygon::BATCH_LANES;
-                let m = ux.len().min(uy.len()).min(dx.len()).min(dy.len()).min(dz.len()).min(LANES);
+                let m = crate::soa::common_len(ux, uy, dx, dy, dz).min(LANES);
                 // Each sample's sector and target, then the samples listed
                 // by sector (a counting sort: sector k's are
                 // `order[start[k]..start[k + 1]]`).

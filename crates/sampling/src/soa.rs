@@ -6,6 +6,19 @@
 /// per f32 array, in the first-level cache).
 pub(crate) const SOA_BLOCK: usize = 256;
 
+/// The length a structure-of-arrays form runs over: the shortest of its
+/// two input and three output slices (every slice form's contract: "the
+/// shortest length wins"). Inlined, it is the same five-way minimum each
+/// form wrote out.
+#[inline(always)]
+pub(crate) fn common_len<R>(ux: &[R], uy: &[R], wx: &[R], wy: &[R], wz: &[R]) -> usize {
+    ux.len()
+        .min(uy.len())
+        .min(wx.len())
+        .min(wy.len())
+        .min(wz.len())
+}
+
 /// Writes `f((ux[i], uy[i]))` to `(wx[i], wy[i], wz[i])` for every index of
 /// the shortest slice. The slices are cut to one length first, so the loop
 /// has no bounds checks and vectorises when `f` inlines branch-free.
@@ -20,12 +33,7 @@ pub(crate) fn map2_to3<R: Copy, V2, V3: Into<[R; 3]>>(
 ) where
     V2: From<[R; 2]>,
 {
-    let n = ux
-        .len()
-        .min(uy.len())
-        .min(wx.len())
-        .min(wy.len())
-        .min(wz.len());
+    let n = common_len(ux, uy, wx, wy, wz);
     let (ux, uy) = (&ux[..n], &uy[..n]);
     let (wx, wy, wz) = (&mut wx[..n], &mut wy[..n], &mut wz[..n]);
     for i in 0..n {
