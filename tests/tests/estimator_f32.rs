@@ -333,6 +333,15 @@ fn digest(words: impl IntoIterator<Item = u64>) -> u64 {
 /// was 0x13c6_1135_39d5_2703; only projected rows of polygons moved, in
 /// their last bits (a rectangle's mean by 5e-12 relative, its standard
 /// error 7e-6).
+/// Re-pinned when the concentric map took the sine and cosine of its
+/// angle (π/4)t from polynomials in t (`sin_cos_eighth`) instead of Taylor
+/// series at the rounded (π/4)t, an ulp or two closer to the exact values:
+/// the digest was 0x1a43_8c9c_4101_c76b. Only rows that draw through the
+/// concentric map can move (cosine-hemisphere sampling, MIS's cosine half,
+/// area sampling of disks, projected sampling of caps and spheres); in f64
+/// the same change moved the reference study's means by at most 2.2e-15
+/// relative (`chunk_bits.rs`), and the f32 rows were not compared one by
+/// one.
 #[test]
 fn f32_values_are_pinned() {
     let mut bits = Vec::new();
@@ -350,7 +359,7 @@ fn f32_values_are_pinned() {
 }
 
 /// The digest of [`f32_values_are_pinned`].
-const PINNED: u64 = 0x1a43_8c9c_4101_c76b;
+const PINNED: u64 = 0x1854_4f04_ed5f_639e;
 
 fn up() -> Receiver {
     Receiver::new(DVec3::ZERO, DVec3::Z).unwrap()

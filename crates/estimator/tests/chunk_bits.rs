@@ -577,12 +577,21 @@ fn rqmc_bits(sequence: SequenceKind, threads: usize) -> Vec<u64> {
 /// second point, a second emitter's points); the stratified digest was 0x4bf1_3fd6_010d_175e, the Sobol one did
 /// not move. And when those rounds moved to 16-bit lanes with a 16-bit
 /// hash: another such relabelling; the stratified digest was
-/// 0xc650_b8a3_7c0e_6b6e.
+/// 0xc650_b8a3_7c0e_6b6e. And when the concentric map took its angle's
+/// sine and cosine from polynomials in its ratio t (`sin_cos_eighth`)
+/// instead of Taylor series at the rounded (π/4)t, values within an ulp
+/// or two; the digests were 0x5554_5e77_f74c_e369 (Sobol) and
+/// 0xecbd_ed38_6074_2d75 (stratified). Compared row by row with the
+/// reference study (4,992 rows, f64): only the area rows of the four disk
+/// scenes (means by at most 2.2e-15 relative, standard errors 3.8e-12),
+/// the projected rows of sphere-tilted-30 (means 1.3e-16) and the MIS and
+/// MIS-balance rows of directional-and-sky (standard errors 5.2e-13)
+/// moved.
 #[test]
 fn randomized_qmc_estimates_are_pinned() {
     let pinned = [
-        (SequenceKind::Sobol, 0x5554_5e77_f74c_e369_u64),
-        (SequenceKind::Stratified, 0xecbd_ed38_6074_2d75),
+        (SequenceKind::Sobol, 0x17a9_da7b_8b20_49ea_u64),
+        (SequenceKind::Stratified, 0x60ef_e871_b284_ffa9),
     ];
     for (sequence, want) in pinned {
         let one = rqmc_bits(sequence, 1);

@@ -5,7 +5,7 @@
 macro_rules! disk_impl {
     ($p:ident, $v2:ident, $v3:ident) => {
         use crate::spherical::$p::azimuth_fraction;
-        use crate::trig::$p::{sin_cos_2pi, sin_cos_quarter};
+        use crate::trig::$p::{sin_cos_2pi, sin_cos_eighth};
         use lambert_geometry::precision::$p::{Real, PI, V2, V3};
 
         /// The concentric map in polar form: (r, sin φ, cos φ) with r ≥ 0.
@@ -45,14 +45,26 @@ macro_rules! disk_impl {
             (t, den, a_wins)
         }
 
+        /// (cos ψ, sin ψ) of the wedge [`concentric_wedge`] found, where
+        /// the point is den·(cos ψ, sin ψ): φ = ψ, or ψ + π where den < 0.
+        /// a wins: ψ = (π/4)t, (cos ψ, sin ψ) = (c, s); b wins:
+        /// ψ = π/2 − (π/4)t, (cos ψ, sin ψ) = (s, c), with
+        /// (s, c) = [`sin_cos_eighth`]`(t)`.
+        #[inline(always)]
+        pub(crate) fn concentric_unsigned(t: Real, a_wins: bool) -> (Real, Real) {
+            let (s, c) = sin_cos_eighth(t);
+            if a_wins {
+                (c, s)
+            } else {
+                (s, c)
+            }
+        }
+
         /// The second half of [`concentric_polar`]: (r, sin φ, cos φ) from
         /// the wedge [`concentric_wedge`] found.
         #[inline(always)]
         pub(crate) fn concentric_polar_from((t, den, a_wins): (Real, Real, bool)) -> (Real, Real, Real) {
-            let (s, c) = sin_cos_quarter((PI / 4.0) * t);
-            // a wins: φ = (π/4)t, (cos φ, sin φ) = (c, s);
-            // b wins: φ = π/2 − (π/4)t, (cos φ, sin φ) = (s, c).
-            let (cos_phi, sin_phi) = if a_wins { (c, s) } else { (s, c) };
+            let (cos_phi, sin_phi) = concentric_unsigned(t, a_wins);
             // The sign of den, as a flip rather than a product with ±1
             // (the same value, without the multiplies): den's sign bit
             // xored into both, which is negation where den < 0 (or −0).

@@ -115,7 +115,9 @@ macro_rules! public_api {
         pub use crate::spherical_triangle::$p::SphericalTriangle;
         pub use crate::triangle::$p::UniformTriangle;
         pub use crate::triangle_light::$p::{TriangleLightSampler, TriangleSolidAngle};
-        pub use crate::trig::$p::{cos_2pi, sin, sin_cos, sin_cos_2pi, sin_cos_quarter};
+        pub use crate::trig::$p::{
+            cos_2pi, sin, sin_cos, sin_cos_2pi, sin_cos_eighth, sin_cos_quarter,
+        };
         pub use crate::uniform_solid_angle::$p::UniformSolidAngle;
     };
 }
