@@ -9,7 +9,11 @@
 //! * the first pair's position `(i + b) mod N` is the low `p` bits of the
 //!   wrapping 32-bit `i + b` (`2^p` divides `2^32`); its row is the low
 //!   `log₂ ny` bits of that and its column the bits above times `g_x`,
-//!   masked, so each lane computes its own cell, with no runs of columns;
+//!   masked. Consecutive points then run down a column, so for `ny` at
+//!   least a span (256) the column's terms (its spread and the hash of its
+//!   shift) are computed once per run and each lane computes only its
+//!   row's: three of the seven 32-bit multiplies a point took, two fewer
+//!   hashes (below `ny = 256` each lane computes its own cell);
 //! * `cell mod nx` and `⌊cell / nx⌋` are a mask and a shift;
 //! * the spreads `x·g mod m` (`m = nx` or `ny`) are the low bits of the
 //!   wrapping product: no table, no gather;
@@ -198,22 +202,59 @@ impl PowerOfTwoGrid {
         i: u32,
     ) -> ((u32, u32), (u32, u32)) {
         let (_, nx_mask, ny_mask) = self.masks();
-        let (log_nx, log_ny) = (self.log_nx, self.log_ny);
         let (c, r) = if FIRST {
-            (
-                (position >> log_ny).wrapping_mul(self.column_unit) & nx_mask,
-                position & ny_mask,
-            )
+            (self.first_column(position), position & ny_mask)
         } else {
-            (position & nx_mask, position >> log_nx)
+            (position & nx_mask, position >> self.log_nx)
         };
-        let column_spread = c.wrapping_mul(self.column_unit) & nx_mask;
+        self.row_parts::<SHORT_SHIFTS, JITTER>(
+            keys,
+            self.column_terms::<SHORT_SHIFTS>(keys, c),
+            r,
+            i,
+        )
+    }
+
+    /// The column `c` of position `p` in the first request pair:
+    /// ⌊p / ny⌋·g_x mod nx.
+    #[inline(always)]
+    fn first_column(self, position: u32) -> u32 {
+        let (_, nx_mask, _) = self.masks();
+        (position >> self.log_ny).wrapping_mul(self.column_unit) & nx_mask
+    }
+
+    /// What column `c` fixes of its points' parts: its strata's top bits
+    /// `c·ny`, its spread `c·g_x mod nx` and its shift
+    /// `s = ⌊σ(c)·ny / 2³²⌋`.
+    #[inline(always)]
+    fn column_terms<const SHORT_SHIFTS: bool>(self, keys: &PairKeys, c: u32) -> ColumnTerms {
+        let (_, nx_mask, _) = self.masks();
+        ColumnTerms {
+            top: c << self.log_ny,
+            spread: c.wrapping_mul(self.column_unit) & nx_mask,
+            // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), 0 for log = 0.
+            shift: shr_or_zero(
+                hash_u32_cut::<SHORT_SHIFTS>(keys.sigma, c),
+                32 - self.log_ny,
+            ),
+        }
+    }
+
+    /// Point `i`'s parts ([`PowerOfTwoGrid::parts`]) from its column's
+    /// terms and its row `r`.
+    #[inline(always)]
+    fn row_parts<const SHORT_SHIFTS: bool, const JITTER: u8>(
+        self,
+        keys: &PairKeys,
+        column: ColumnTerms,
+        r: u32,
+        i: u32,
+    ) -> ((u32, u32), (u32, u32)) {
+        let (_, nx_mask, ny_mask) = self.masks();
         let row_spread = r.wrapping_mul(self.row_unit) & ny_mask;
-        // ⌊h·m/2³²⌋ for m = 2^log: h ≫ (32 − log), 0 for log = 0.
-        let s = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.sigma, c), 32 - log_ny);
-        let t = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.tau, r), 32 - log_nx);
-        let kx = (c << log_ny) | ((row_spread + s) & ny_mask);
-        let ky = (r << log_nx) | ((column_spread + t) & nx_mask);
+        let t = shr_or_zero(hash_u32_cut::<SHORT_SHIFTS>(keys.tau, r), 32 - self.log_nx);
+        let kx = column.top | ((row_spread + column.shift) & ny_mask);
+        let ky = (r << self.log_nx) | ((column.spread + t) & nx_mask);
         (
             (kx, Jitter::bits::<JITTER>(keys.jitter, i)),
             (ky, Jitter::bits::<JITTER>(keys.jitter >> 32, i)),
@@ -244,18 +285,45 @@ impl PowerOfTwoGrid {
             let m = xs.len().min(ys.len());
             let base = first.wrapping_add((s * SPAN) as u32);
             let (kx, hx, ky, hy) = (&mut kx[..m], &mut hx[..m], &mut ky[..m], &mut hy[..m]);
-            // The positions first, in kx (a later pair's permutation step
-            // is a long chain of dependent operations; in a loop of its
-            // own more points' chains overlap).
-            for (j, k) in kx.iter_mut().enumerate() {
-                *k = self.position::<FIRST>(keys, domain, base.wrapping_add(j as u32));
-            }
-            for j in 0..m {
-                ((kx[j], hx[j]), (ky[j], hy[j])) = self.parts::<FIRST, SHORT_SHIFTS, JITTER>(
-                    keys,
-                    kx[j],
-                    base.wrapping_add(j as u32),
-                );
+            if FIRST && self.log_ny >= SPAN.ilog2() {
+                // Consecutive points of the first pair run down a column
+                // (position p + 1 follows p in the same column until p
+                // reaches a multiple of ny): each column's terms once per
+                // run, at most two runs a span (ny ≥ SPAN).
+                let position = self.position::<true>(keys, domain, base);
+                let (_, _, ny_mask) = self.masks();
+                let left = ((ny_mask - (position & ny_mask)) as usize + 1).min(m);
+                let (n_mask, _, _) = self.masks();
+                for (start, run, position) in [
+                    (0, left, position),
+                    (left, m - left, position.wrapping_add(left as u32) & n_mask),
+                ] {
+                    let column = self.first_column(position);
+                    let terms = self.column_terms::<SHORT_SHIFTS>(keys, column);
+                    let r0 = position & ny_mask;
+                    for j in start..start + run {
+                        ((kx[j], hx[j]), (ky[j], hy[j])) = self.row_parts::<SHORT_SHIFTS, JITTER>(
+                            keys,
+                            terms,
+                            r0 + (j - start) as u32,
+                            base.wrapping_add(j as u32),
+                        );
+                    }
+                }
+            } else {
+                // The positions first, in kx (a later pair's permutation
+                // step is a long chain of dependent operations; in a loop
+                // of its own more points' chains overlap).
+                for (j, k) in kx.iter_mut().enumerate() {
+                    *k = self.position::<FIRST>(keys, domain, base.wrapping_add(j as u32));
+                }
+                for j in 0..m {
+                    ((kx[j], hx[j]), (ky[j], hy[j])) = self.parts::<FIRST, SHORT_SHIFTS, JITTER>(
+                        keys,
+                        kx[j],
+                        base.wrapping_add(j as u32),
+                    );
+                }
             }
             let (xs, ys) = (&mut xs[..m], &mut ys[..m]);
             for j in 0..m {
@@ -264,6 +332,18 @@ impl PowerOfTwoGrid {
             }
         }
     }
+}
+
+/// What a column of the grid fixes of its points' strata
+/// ([`PowerOfTwoGrid::column_terms`]).
+#[derive(Clone, Copy)]
+struct ColumnTerms {
+    /// The x strata's top bits, `c·ny`.
+    top: u32,
+    /// The column's spread, `c·g_x mod nx`.
+    spread: u32,
+    /// The column's shift of its rows, `⌊σ(c)·ny / 2³²⌋`.
+    shift: u32,
 }
 
 /// How a pass forms its jitter bits (the `JITTER` parameter of
@@ -360,6 +440,52 @@ mod tests {
                         assert_eq!((xf[k], yf[k]), want, "{what} k {k}");
                         assert_eq!(pow2.unit_f32(px), want.0, "{what} k {k}");
                     }
+                }
+            }
+        }
+    }
+
+    /// The first pair's column runs (`ny ≥ SPAN`) end where a column
+    /// does and where the pass wraps from position `N − 1` to 0: spans
+    /// that start a few points before either, or on it, give the general
+    /// kernel's values (f64, and f32 where they agree by definition) and
+    /// the exact f32 ones. Negative control: the same positions read one
+    /// point later differ from the kernel's at every point.
+    #[test]
+    fn first_pair_runs_cross_columns_and_the_pass_end() {
+        for p in [16u32, 17, 20, 24, 25, 31] {
+            let grid = grid_of(p);
+            let general = grid.clone().without_power_of_two();
+            let (n_mask, ny, len) = (((1u64 << p) - 1) as u32, grid.ny, 2 * SPAN + 40);
+            for before in [0u32, 1, 37, SPAN as u32 - 1, SPAN as u32 + 5] {
+                // Positions from the wrap, and from the end of a middle column.
+                for target in [0u32, 3 * ny] {
+                    let position = target.wrapping_sub(before) & n_mask;
+                    // The first pass index reaching `position`, under the
+                    // first seed that leaves the points (and one more) in
+                    // the pass.
+                    let (keys, first) = (0u64..)
+                        .map(|seed| {
+                            let keys = PairKeys::new(&grid, seed ^ u64::from(p), 0);
+                            let first = position.wrapping_sub(keys.offset) & n_mask;
+                            (keys, first)
+                        })
+                        .find(|&(_, first)| u64::from(first) + (len as u64) < 1u64 << p)
+                        .unwrap();
+                    let what = format!("p {p} before {before} target {target}");
+                    let wide = fill::<f64>(&grid, &keys, 0, first, len);
+                    assert_eq!(wide, fill::<f64>(&general, &keys, 0, first, len), "{what}");
+                    let (xf, yf) = fill::<f32>(&grid, &keys, 0, first, len);
+                    for k in 0..len {
+                        let [px, py] = parts(&general, &keys, 0, first.wrapping_add(k as u32));
+                        assert_eq!(
+                            (xf[k], yf[k]),
+                            (exact_f32(p, px), exact_f32(p, py)),
+                            "{what} k {k}"
+                        );
+                    }
+                    let shifted = fill::<f64>(&grid, &keys, 0, first.wrapping_add(1), len);
+                    assert!(wide.0.iter().zip(&shifted.0).all(|(a, b)| a != b), "{what}");
                 }
             }
         }
