@@ -172,8 +172,8 @@ macro_rules! trig_impl {
         /// (π/4)¹¹/11! ≈ 2e-9 relative to values ≥ 0.7 for cos, and to x for sin.
         /// The quadrant then permutes and negates (sin x, cos x).
         ///
-        /// The same polynomials serve the concentric disk, whose angle is already
-        /// within [−π/4, π/4] ([`sin_cos_quarter`](crate::f64::sin_cos_quarter) of each precision).
+        /// The concentric disk's angle (π/4)t has polynomials of its own, in t
+        /// ([`sin_cos_eighth`](crate::f64::sin_cos_eighth) of each precision).
         ///
         /// # Panics
         /// Debug builds check the interval (with a few ulps of slack).
@@ -274,8 +274,8 @@ macro_rules! trig_impl {
         /// (π/4)¹¹/11! ≈ 2e-9 relative to values ≥ 0.7 for cos, and to x for sin.
         /// The quadrant then permutes and negates (sin x, cos x).
         ///
-        /// The same polynomials serve the concentric disk, whose angle is already
-        /// within [−π/4, π/4] ([`sin_cos_quarter`](crate::f64::sin_cos_quarter) of each precision).
+        /// The concentric disk's angle (π/4)t has polynomials of its own, in t
+        /// ([`sin_cos_eighth`](crate::f64::sin_cos_eighth) of each precision).
         ///
         /// ```
         #[doc = concat!("use lambert_sampling::", stringify!($p), "::sin_cos_2pi;")]
