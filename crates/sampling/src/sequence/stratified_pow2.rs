@@ -12,8 +12,9 @@
 //!   masked. Consecutive points then run down a column, so for `ny` at
 //!   least a span (256) the column's terms (its spread and the hash of its
 //!   shift) are computed once per run and each lane computes only its
-//!   row's: three of the seven 32-bit multiplies a point took, two fewer
-//!   hashes (below `ny = 256` each lane computes its own cell);
+//!   row's: three 32-bit multiplies a point instead of seven, and one
+//!   hash instead of two (below `ny = 256` each lane computes its own
+//!   cell);
 //! * `cell mod nx` and `⌊cell / nx⌋` are a mask and a shift;
 //! * the spreads `x·g mod m` (`m = nx` or `ny`) are the low bits of the
 //!   wrapping product: no table, no gather;
